@@ -1,0 +1,237 @@
+//! What a figure is: a kinematic tree of rigid bodies joined by one-degree-of-freedom joints, with named
+//! frames on the bodies. A model is immutable once built and shared by every evaluation; scratch space
+//! for one evaluation lives in [`crate::dynamics::Data`].
+//!
+//! Indexing follows Pinocchio: body 0 is the root, welded to the world; body `i ≥ 1` is moved by joint `i`
+//! relative to body `parent(i) < i` (the paper's `i.parent`), and joint `i` owns degree of freedom
+//! `i − 1` of `q`, `q̇`, `q̈` and `τ`. Fixed joints are merged away when a model is built (their links
+//! become frames); multi-DOF anatomical joints (the paper's shoulder `Rot(z)·Rot(y)·Rot(x)`) expand into
+//! a chain of revolutes joined by massless bodies, each revolute remembering its anatomical `group`.
+//! Closed loops are cut open here and closed again by constraints in the planner.
+
+pub mod validate;
+
+use crate::spatial::{Inertia, Transform, Vec3};
+
+/// The motion a joint allows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum JointKind {
+    /// The root's pseudo-joint: no degree of freedom.
+    Root,
+    /// Rotation about `axis` (rad).
+    Revolute,
+    /// Translation along `axis` (m).
+    Prismatic,
+}
+
+/// Position, velocity and effort limits of one joint. SI units (rad or m, rad/s or m/s, N·m or N);
+/// an absent limit is infinite.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct JointLimits {
+    pub lower: f64,
+    pub upper: f64,
+    pub velocity: f64,
+    pub effort: f64,
+}
+
+impl Default for JointLimits {
+    fn default() -> Self {
+        JointLimits {
+            lower: f64::NEG_INFINITY,
+            upper: f64::INFINITY,
+            velocity: f64::INFINITY,
+            effort: f64::INFINITY,
+        }
+    }
+}
+
+/// The passive "resistant torque" of a joint (paper section 7.2): a torsional spring towards `rest`
+/// and a viscous damper, `τ_passive = −stiffness·(q − rest) − damping·q̇`.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Passive {
+    /// N·m/rad (or N/m for a prismatic joint).
+    pub stiffness: f64,
+    /// rad (or m).
+    pub rest: f64,
+    /// N·m·s/rad (or N·s/m).
+    pub damping: f64,
+}
+
+impl Passive {
+    pub fn is_zero(&self) -> bool {
+        self.stiffness == 0.0 && self.damping == 0.0
+    }
+
+    /// The passive generalised force at `(q, q̇)`.
+    #[inline]
+    pub fn torque(&self, q: f64, qd: f64) -> f64 {
+        -self.stiffness * (q - self.rest) - self.damping * qd
+    }
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Joint {
+    pub name: String,
+    pub kind: JointKind,
+    /// Index of the body this joint hangs from (`parent(i) < i`).
+    pub parent: usize,
+    /// The joint frame in the parent body's frame at `q = 0` (the paper's `Dᵢ` of eq. 17, with any
+    /// constant rotation folded in).
+    pub placement: Transform,
+    /// Unit axis in the joint frame.
+    pub axis: Vec3,
+    pub limits: JointLimits,
+    pub passive: Passive,
+    /// The anatomical joint this revolute belongs to (`"shoulder"` for `shoulder_z`), if any.
+    pub group: Option<String>,
+}
+
+/// Simple shapes for drawing a body (body frame, SI units). They play no part in the dynamics.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Shape {
+    /// A box centred at `origin`, with full edge lengths `size`.
+    Box {
+        origin: Transform,
+        size: Vec3,
+    },
+    /// A cylinder along the local z axis of `origin`, centred there.
+    Cylinder {
+        origin: Transform,
+        radius: f64,
+        length: f64,
+    },
+    /// A capsule from point `a` to point `b`.
+    Capsule {
+        a: Vec3,
+        b: Vec3,
+        radius: f64,
+    },
+    Sphere {
+        center: Vec3,
+        radius: f64,
+    },
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Body {
+    /// The link's name (for merged links, the name of the link that carries the joint).
+    pub name: String,
+    /// Mass properties in the body frame, including every link merged into it by fixed joints.
+    pub inertia: Inertia,
+    pub shapes: Vec<Shape>,
+}
+
+/// A named frame on a body: a link merged by a fixed joint, a hand, a foot, a barbell grip.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Frame {
+    pub name: String,
+    pub body: usize,
+    /// The frame in the body's frame.
+    pub placement: Transform,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Model {
+    pub name: String,
+    /// `joints[0]` is the root pseudo-joint; `joints[i]` moves `bodies[i]`.
+    pub joints: Vec<Joint>,
+    pub bodies: Vec<Body>,
+    pub frames: Vec<Frame>,
+    /// Default gravity in the world frame (m/s²); tasks may override it.
+    pub gravity: Vec3,
+}
+
+impl Model {
+    /// An empty model: just the root body, welded to the world.
+    pub fn new(name: impl Into<String>, root_name: impl Into<String>) -> Self {
+        let root_name = root_name.into();
+        Model {
+            name: name.into(),
+            joints: vec![Joint {
+                name: "universe".into(),
+                kind: JointKind::Root,
+                parent: 0,
+                placement: Transform::IDENTITY,
+                axis: Vec3::zeros(),
+                limits: JointLimits::default(),
+                passive: Passive::default(),
+                group: None,
+            }],
+            bodies: vec![Body {
+                name: root_name.clone(),
+                inertia: Inertia::ZERO,
+                shapes: vec![],
+            }],
+            frames: vec![Frame {
+                name: root_name,
+                body: 0,
+                placement: Transform::IDENTITY,
+            }],
+            gravity: Vec3::new(0.0, 0.0, -9.81),
+        }
+    }
+
+    /// Appends a body moved by a 1-DOF joint; returns its index. The body's own frame is added under the
+    /// body's name. Callers must add parents before children (validated by [`Model::validate`]).
+    pub fn add_body(&mut self, joint: Joint, body: Body) -> usize {
+        let i = self.bodies.len();
+        self.frames.push(Frame {
+            name: body.name.clone(),
+            body: i,
+            placement: Transform::IDENTITY,
+        });
+        self.joints.push(joint);
+        self.bodies.push(body);
+        i
+    }
+
+    /// Number of degrees of freedom (`nq = nv`).
+    #[inline]
+    pub fn nv(&self) -> usize {
+        self.joints.len() - 1
+    }
+
+    #[inline]
+    pub fn parent(&self, i: usize) -> usize {
+        self.joints[i].parent
+    }
+
+    /// Names of the DOF joints, in `q` order.
+    pub fn joint_names(&self) -> Vec<&str> {
+        self.joints[1..].iter().map(|j| j.name.as_str()).collect()
+    }
+
+    /// The `q` index of the joint called `name`.
+    pub fn dof_index(&self, name: &str) -> Option<usize> {
+        self.joints[1..].iter().position(|j| j.name == name)
+    }
+
+    pub fn frame_index(&self, name: &str) -> Option<usize> {
+        self.frames.iter().position(|f| f.name == name)
+    }
+
+    pub fn body_index(&self, name: &str) -> Option<usize> {
+        self.bodies.iter().position(|b| b.name == name)
+    }
+
+    /// Total mass, the root's included.
+    pub fn total_mass(&self) -> f64 {
+        self.bodies.iter().map(|b| b.inertia.mass).sum()
+    }
+
+    /// Whether body `k` is `i` or one of its ancestors (`k ⪯ i`).
+    pub fn is_ancestor_or_self(&self, k: usize, mut i: usize) -> bool {
+        while i > k {
+            i = self.joints[i].parent;
+        }
+        i == k
+    }
+
+    /// Lower and upper position limits as vectors.
+    pub fn position_limits(&self) -> (Vec<f64>, Vec<f64>) {
+        self.joints[1..]
+            .iter()
+            .map(|j| (j.limits.lower, j.limits.upper))
+            .unzip()
+    }
+}
