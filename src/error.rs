@@ -25,27 +25,15 @@ pub enum Error {
 
     /// Input that does not fit the model: a state vector of the wrong length, an unknown joint name, NaN.
     #[error("{origin}: {field}: {message}")]
-    Input {
-        origin: String,
-        field: String,
-        message: String,
-    },
+    Input { origin: String, field: String, message: String },
 
     /// A task that cannot be planned as asked (contradictory or impossible constraints).
     #[error("{origin}: {field}: {message}")]
-    Task {
-        origin: String,
-        field: String,
-        message: String,
-    },
+    Task { origin: String, field: String, message: String },
 }
 
 impl Error {
-    pub fn model(
-        origin: impl Into<String>,
-        element: impl Into<String>,
-        message: impl Into<String>,
-    ) -> Self {
+    pub fn model(origin: impl Into<String>, element: impl Into<String>, message: impl Into<String>) -> Self {
         Error::Model {
             origin: origin.into(),
             element: element.into(),
@@ -53,11 +41,7 @@ impl Error {
         }
     }
 
-    pub fn input(
-        origin: impl Into<String>,
-        field: impl Into<String>,
-        message: impl Into<String>,
-    ) -> Self {
+    pub fn input(origin: impl Into<String>, field: impl Into<String>, message: impl Into<String>) -> Self {
         Error::Input {
             origin: origin.into(),
             field: field.into(),
@@ -65,11 +49,7 @@ impl Error {
         }
     }
 
-    pub fn task(
-        origin: impl Into<String>,
-        field: impl Into<String>,
-        message: impl Into<String>,
-    ) -> Self {
+    pub fn task(origin: impl Into<String>, field: impl Into<String>, message: impl Into<String>) -> Self {
         Error::Task {
             origin: origin.into(),
             field: field.into(),

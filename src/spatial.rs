@@ -224,10 +224,7 @@ impl Transform {
     };
 
     pub fn new(rotation: Mat3, translation: Vec3) -> Self {
-        Transform {
-            rotation,
-            translation,
-        }
+        Transform { rotation, translation }
     }
 
     pub fn from_translation(translation: Vec3) -> Self {
@@ -332,11 +329,7 @@ pub fn rpy_to_matrix(rpy: &Vec3) -> Mat3 {
 pub fn matrix_to_rpy(r: &Mat3) -> Vec3 {
     let pitch = (-r[(2, 0)]).clamp(-1.0, 1.0).asin();
     if pitch.cos().abs() > 1e-9 {
-        Vec3::new(
-            r[(2, 1)].atan2(r[(2, 2)]),
-            pitch,
-            r[(1, 0)].atan2(r[(0, 0)]),
-        )
+        Vec3::new(r[(2, 1)].atan2(r[(2, 2)]), pitch, r[(1, 0)].atan2(r[(0, 0)]))
     } else {
         // Gimbal lock: only roll ± yaw is determined; put it all in yaw.
         Vec3::new(0.0, pitch, (-r[(0, 1)]).atan2(r[(1, 1)]))
@@ -380,11 +373,7 @@ impl Inertia {
     };
 
     pub fn new(mass: f64, com: Vec3, inertia_com: Mat3) -> Self {
-        Inertia {
-            mass,
-            com,
-            inertia_com,
-        }
+        Inertia { mass, com, inertia_com }
     }
 
     /// This inertia seen from the parent frame of `x` (the link's frame is `x`'s child frame).
@@ -483,8 +472,7 @@ impl SpatialInertia {
         out.fixed_view_mut::<3, 3>(0, 0).copy_from(&self.i_o);
         out.fixed_view_mut::<3, 3>(0, 3).copy_from(&hx);
         out.fixed_view_mut::<3, 3>(3, 0).copy_from(&(-hx));
-        out.fixed_view_mut::<3, 3>(3, 3)
-            .copy_from(&(Mat3::identity() * self.m));
+        out.fixed_view_mut::<3, 3>(3, 3).copy_from(&(Mat3::identity() * self.m));
         out
     }
 }

@@ -33,9 +33,7 @@ pub fn placements(model: &Model, data: &mut Data, q: &[f64]) {
     for i in 1..model.bodies.len() {
         let joint = &model.joints[i];
         // ⁰Mᵢ = ⁰M_λ(i) · Dᵢ · e^{Ŝᵢ qᵢ}   (eq. 17)
-        let x_parent = joint
-            .placement
-            .compose(&joint_transform(joint.kind, &joint.axis, q[i - 1]));
+        let x_parent = joint.placement.compose(&joint_transform(joint.kind, &joint.axis, q[i - 1]));
         let o_m_i = data.oMi[joint.parent].compose(&x_parent);
         data.S[i] = o_m_i.act_motion(&local_axis(joint.kind, &joint.axis));
         data.oI[i] = data.I_local[i].act(&o_m_i);
@@ -61,9 +59,7 @@ pub fn accelerations(model: &Model, data: &mut Data, v: &[f64], a: &[f64], gravi
     data.a[0] = Motion::new(Vec3::zeros(), -gravity);
     for i in 1..model.bodies.len() {
         let p = model.joints[i].parent;
-        data.a[i] = data.a[p]
-            .add_scaled(&data.S[i], a[i - 1])
-            .add_scaled(&data.Sdot[i], v[i - 1]);
+        data.a[i] = data.a[p].add_scaled(&data.S[i], a[i - 1]).add_scaled(&data.Sdot[i], v[i - 1]);
     }
 }
 
@@ -92,7 +88,5 @@ pub fn kinetic_energy(model: &Model, data: &Data) -> f64 {
 
 /// Potential energy `−Σ mᵢ g · cᵢ` after [`placements`] (zero at the world origin).
 pub fn potential_energy(model: &Model, data: &Data, gravity: &Vec3) -> f64 {
-    (1..model.bodies.len())
-        .map(|i| -gravity.dot(&data.oI[i].h))
-        .sum()
+    (1..model.bodies.len()).map(|i| -gravity.dot(&data.oI[i].h)).sum()
 }

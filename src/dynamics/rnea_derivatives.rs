@@ -35,15 +35,7 @@ use crate::spatial::{skew, Force, Mat3, Motion, Vec3};
 
 /// `τ`, `∂τ/∂q`, `∂τ/∂q̇` and `H` at `(q, q̇, q̈)` into `data.tau`, `data.dtau_dq`, `data.dtau_dv`,
 /// `data.M`. Also the root reaction wrench.
-pub fn rnea_derivatives(
-    model: &Model,
-    data: &mut Data,
-    q: &[f64],
-    v: &[f64],
-    a: &[f64],
-    gravity: &Vec3,
-    fext: ExternalForces,
-) {
+pub fn rnea_derivatives(model: &Model, data: &mut Data, q: &[f64], v: &[f64], a: &[f64], gravity: &Vec3, fext: ExternalForces) {
     let nb = model.bodies.len();
     placements(model, data, q);
     velocities(model, data, v);
@@ -58,10 +50,7 @@ pub fn rnea_derivatives(
         let momentum = inertia.mul(&data.v[i]);
         let (w, u) = (data.v[i].w, data.v[i].v);
         let t = skew(&w) * inertia.i_o;
-        data.B_ww[i] = t + t.transpose()
-            - skew(&momentum.n)
-            - inertia.h * u.transpose()
-            - u * inertia.h.transpose()
+        data.B_ww[i] = t + t.transpose() - skew(&momentum.n) - inertia.h * u.transpose() - u * inertia.h.transpose()
             + Mat3::identity() * (2.0 * u.dot(&inertia.h));
         data.p[i] = momentum.f;
         data.Y[i] = inertia;

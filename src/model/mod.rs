@@ -229,9 +229,6 @@ impl Model {
 
     /// Lower and upper position limits as vectors.
     pub fn position_limits(&self) -> (Vec<f64>, Vec<f64>) {
-        self.joints[1..]
-            .iter()
-            .map(|j| (j.limits.lower, j.limits.upper))
-            .unzip()
+        self.joints[1..].iter().map(|j| (j.limits.lower, j.limits.upper)).unzip()
     }
 }

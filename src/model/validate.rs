@@ -33,47 +33,28 @@ impl Model {
             }
             let n = j.axis.norm();
             if !n.is_finite() || (n - 1.0).abs() > 1e-9 {
-                return err(
-                    element,
-                    format!("axis must be a unit vector, got {:?}", j.axis.as_slice()),
-                );
+                return err(element, format!("axis must be a unit vector, got {:?}", j.axis.as_slice()));
             }
             let p = &j.placement;
-            if !p
-                .rotation
-                .iter()
-                .chain(p.translation.iter())
-                .all(|x| x.is_finite())
-            {
+            if !p.rotation.iter().chain(p.translation.iter()).all(|x| x.is_finite()) {
                 return err(element, "origin is not finite (NaN or infinity)".into());
             }
-            if (p.rotation.transpose() * p.rotation - crate::spatial::Mat3::identity()).norm()
-                > 1e-9
-            {
+            if (p.rotation.transpose() * p.rotation - crate::spatial::Mat3::identity()).norm() > 1e-9 {
                 return err(element, "origin rotation is not a rotation matrix".into());
             }
             let l = &j.limits;
             if l.lower.is_nan() || l.upper.is_nan() || l.lower > l.upper {
                 return err(
                     element,
-                    format!(
-                        "limits must satisfy lower ≤ upper, got [{}, {}]",
-                        l.lower, l.upper
-                    ),
+                    format!("limits must satisfy lower ≤ upper, got [{}, {}]", l.lower, l.upper),
                 );
             }
             if l.velocity.is_nan() || l.velocity < 0.0 || l.effort.is_nan() || l.effort < 0.0 {
                 return err(element, "velocity and effort limits must be ≥ 0".into());
             }
             let s = &j.passive;
-            if !(s.stiffness.is_finite() && s.rest.is_finite() && s.damping.is_finite())
-                || s.stiffness < 0.0
-                || s.damping < 0.0
-            {
-                return err(
-                    element,
-                    "spring stiffness and damping must be finite and ≥ 0".into(),
-                );
+            if !(s.stiffness.is_finite() && s.rest.is_finite() && s.damping.is_finite()) || s.stiffness < 0.0 || s.damping < 0.0 {
+                return err(element, "spring stiffness and damping must be finite and ≥ 0".into());
             }
         }
         let mut body_names = HashSet::new();
@@ -81,16 +62,12 @@ impl Model {
             if !body_names.insert(b.name.as_str()) {
                 return err(format!("link \"{}\"", b.name), "duplicate link name".into());
             }
-            check_inertia(&b.inertia)
-                .or_else(|m| err(format!("link \"{}\" inertia", b.name), m))?;
+            check_inertia(&b.inertia).or_else(|m| err(format!("link \"{}\" inertia", b.name), m))?;
         }
         let mut frame_names = HashSet::new();
         for f in &self.frames {
             if !frame_names.insert(f.name.as_str()) {
-                return err(
-                    format!("frame \"{}\"", f.name),
-                    "duplicate frame name".into(),
-                );
+                return err(format!("frame \"{}\"", f.name), "duplicate frame name".into());
             }
             if f.body >= self.bodies.len() {
                 return err(
@@ -123,10 +100,7 @@ impl Model {
 /// A physically possible rigid body: mass ≥ 0, inertia symmetric positive semi-definite with principal
 /// moments obeying the triangle inequality (`I₁ + I₂ ≥ I₃`), everything finite.
 pub fn check_inertia(i: &Inertia) -> std::result::Result<(), String> {
-    if !i.mass.is_finite()
-        || !i.com.iter().all(|x| x.is_finite())
-        || !i.inertia_com.iter().all(|x| x.is_finite())
-    {
+    if !i.mass.is_finite() || !i.com.iter().all(|x| x.is_finite()) || !i.inertia_com.iter().all(|x| x.is_finite()) {
         return Err("not finite (NaN or infinity)".into());
     }
     if i.mass < 0.0 {
@@ -147,7 +121,9 @@ pub fn check_inertia(i: &Inertia) -> std::result::Result<(), String> {
     let (a, b, c) = (eig[0], eig[1], eig[2]);
     let tol = 1e-9 * scale;
     if a < -tol || b < -tol || c < -tol {
-        return Err(format!("inertia is not positive semi-definite (principal moments {a:.6e}, {b:.6e}, {c:.6e} kg·m²)"));
+        return Err(format!(
+            "inertia is not positive semi-definite (principal moments {a:.6e}, {b:.6e}, {c:.6e} kg·m²)"
+        ));
     }
     if a + b < c - tol || a + c < b - tol || b + c < a - tol {
         return Err(format!(
