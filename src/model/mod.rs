@@ -9,6 +9,7 @@
 //! a chain of revolutes joined by massless bodies, each revolute remembering its anatomical `group`.
 //! Closed loops are cut open here and closed again by constraints in the planner.
 
+pub mod urdf;
 pub mod validate;
 
 use crate::spatial::{Inertia, Transform, Vec3};
@@ -183,6 +184,48 @@ impl Model {
         self.joints.push(joint);
         self.bodies.push(body);
         i
+    }
+
+    /// Appends an anatomical joint of several rotations applied in order (the paper's shoulder
+    /// `Rot(z)·Rot(y)·Rot(x)`, Table I): one revolute per axis, named `{name}_{label}`, joined by massless
+    /// bodies named `{name}_{label}` too, the last one carrying `body`. Each revolute's `group` is `name`.
+    /// `axes` are `(label, unit axis in the joint frame, limits, passive)`. Returns the index of `body`.
+    pub fn add_anatomical_joint(
+        &mut self,
+        name: &str,
+        parent: usize,
+        placement: Transform,
+        axes: &[(&str, Vec3, JointLimits, Passive)],
+        body: Body,
+    ) -> usize {
+        let mut parent = parent;
+        let mut placement = placement;
+        let mut body = Some(body);
+        for (k, (label, axis, limits, passive)) in axes.iter().enumerate() {
+            let joint_name = format!("{name}_{label}");
+            let joint = Joint {
+                name: joint_name.clone(),
+                kind: JointKind::Revolute,
+                parent,
+                placement,
+                axis: *axis,
+                limits: *limits,
+                passive: *passive,
+                group: Some(name.to_string()),
+            };
+            let b = if k + 1 == axes.len() {
+                body.take().expect("last axis carries the body")
+            } else {
+                Body {
+                    name: joint_name,
+                    inertia: Inertia::ZERO,
+                    shapes: vec![],
+                }
+            };
+            parent = self.add_body(joint, b);
+            placement = Transform::IDENTITY;
+        }
+        parent
     }
 
     /// Number of degrees of freedom (`nq = nv`).

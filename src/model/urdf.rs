@@ -1,0 +1,421 @@
+//! URDF import (revolute, continuous, prismatic and fixed joints; `<inertial>` with its `<origin rpy>`;
+//! box/cylinder/sphere visuals kept for drawing, meshes ignored). URDF is SI: metres, kilograms, radians.
+//!
+//! The root link (the one link that is no joint's child) is welded to the world. Fixed joints are merged
+//! away: a link reached through fixed joints adds its mass to the moving body it is welded to and becomes
+//! a named frame of that body. Bodies are numbered depth-first in document order; every file format maps
+//! joints by name, so the order is ours to choose.
+
+use super::{Body, Frame, Joint, JointKind, JointLimits, Model, Passive, Shape};
+use crate::error::{Error, Result};
+use crate::spatial::{Inertia, Mat3, Transform, Vec3};
+use roxmltree::{Document, Node};
+use std::collections::HashMap;
+use std::path::Path;
+
+/// Reads and validates a URDF file.
+pub fn load(path: &Path) -> Result<Model> {
+    let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+    parse(&text, &path.display().to_string())
+}
+
+/// Parses URDF text; `origin` names its source in error messages.
+pub fn parse(text: &str, origin: &str) -> Result<Model> {
+    let doc = Document::parse(text).map_err(|e| Error::model(origin, "XML", e.to_string()))?;
+    let cx = Cx { origin, doc: &doc };
+    let robot = doc.root_element();
+    if robot.tag_name().name() != "robot" {
+        return Err(cx.err(
+            robot,
+            "root element",
+            format!("expected <robot>, found <{}>", robot.tag_name().name()),
+        ));
+    }
+    let mut links: Vec<UrdfLink> = Vec::new();
+    let mut link_index: HashMap<String, usize> = HashMap::new();
+    let mut joints: Vec<UrdfJoint> = Vec::new();
+    for node in robot.children().filter(|n| n.is_element()) {
+        match node.tag_name().name() {
+            "link" => {
+                let link = cx.link(node)?;
+                if link_index.insert(link.name.clone(), links.len()).is_some() {
+                    return Err(cx.err(node, &format!("link \"{}\"", link.name), "duplicate link name".into()));
+                }
+                links.push(link);
+            }
+            "joint" => joints.push(cx.joint(node)?),
+            _ => {}
+        }
+    }
+    if links.is_empty() {
+        return Err(cx.err(robot, "<robot>", "has no <link>".into()));
+    }
+    // Connect: each link has at most one parent joint; exactly one link has none.
+    let mut parent_joint: Vec<Option<usize>> = vec![None; links.len()];
+    let mut children: Vec<Vec<usize>> = vec![vec![]; links.len()];
+    let mut joint_names: HashMap<&str, ()> = HashMap::new();
+    for (ji, j) in joints.iter().enumerate() {
+        let what = format!("joint \"{}\"", j.name);
+        if joint_names.insert(j.name.as_str(), ()).is_some() {
+            return Err(cx.err_at(j.line, &what, "duplicate joint name".into()));
+        }
+        let p = *link_index
+            .get(&j.parent)
+            .ok_or_else(|| cx.err_at(j.line, &format!("{what} <parent>"), format!("unknown link \"{}\"", j.parent)))?;
+        let c = *link_index
+            .get(&j.child)
+            .ok_or_else(|| cx.err_at(j.line, &format!("{what} <child>"), format!("unknown link \"{}\"", j.child)))?;
+        if let Some(other) = parent_joint[c] {
+            return Err(cx.err_at(
+                j.line,
+                &what,
+                format!(
+                    "link \"{}\" already has parent joint \"{}\" (a loop; cut it and close it with a constraint in the task)",
+                    j.child, joints[other].name
+                ),
+            ));
+        }
+        parent_joint[c] = Some(ji);
+        children[p].push(ji);
+    }
+    let roots: Vec<usize> = (0..links.len()).filter(|&l| parent_joint[l].is_none()).collect();
+    match roots.len() {
+        1 => {}
+        0 => {
+            return Err(Error::model(
+                origin,
+                "<robot>",
+                "every link has a parent joint: the joints form a cycle",
+            ))
+        }
+        _ => {
+            let names: Vec<&str> = roots.iter().map(|&l| links[l].name.as_str()).collect();
+            return Err(Error::model(
+                origin,
+                "<robot>",
+                format!("several root links ({}): the links must form one tree", names.join(", ")),
+            ));
+        }
+    }
+    let root = roots[0];
+    let mut model = Model::new(robot.attribute("name").unwrap_or("robot"), links[root].name.clone());
+    model.bodies[0].inertia = links[root].inertia;
+    model.bodies[0].shapes = links[root].shapes.clone();
+    // Depth-first from the root: (link, body it is welded to, link frame in that body's frame).
+    let mut visited = vec![false; links.len()];
+    visited[root] = true;
+    let mut stack: Vec<(usize, usize, Transform)> = vec![(root, 0, Transform::IDENTITY)];
+    while let Some((link, body, in_body)) = stack.pop() {
+        // Push children in reverse so they are numbered in document order.
+        for &ji in children[link].iter().rev() {
+            let j = &joints[ji];
+            let child = link_index[&j.child];
+            if visited[child] {
+                return Err(cx.err_at(j.line, &format!("joint \"{}\"", j.name), "closes a cycle".into()));
+            }
+            visited[child] = true;
+            let placement = in_body.compose(&j.origin);
+            let l = &links[child];
+            match j.kind {
+                UrdfKind::Fixed => {
+                    let merged = model.bodies[body].inertia.merged(&l.inertia.transformed(&placement));
+                    model.bodies[body].inertia = merged;
+                    model.bodies[body]
+                        .shapes
+                        .extend(l.shapes.iter().map(|s| transform_shape(s, &placement)));
+                    model.frames.push(Frame {
+                        name: l.name.clone(),
+                        body,
+                        placement,
+                    });
+                    stack.push((child, body, placement));
+                }
+                UrdfKind::Moving(kind) => {
+                    let joint = Joint {
+                        name: j.name.clone(),
+                        kind,
+                        parent: body,
+                        placement,
+                        axis: j.axis,
+                        limits: j.limits,
+                        passive: Passive {
+                            stiffness: 0.0,
+                            rest: 0.0,
+                            damping: j.damping,
+                        },
+                        group: None,
+                    };
+                    let b = model.add_body(
+                        joint,
+                        Body {
+                            name: l.name.clone(),
+                            inertia: l.inertia,
+                            shapes: l.shapes.clone(),
+                        },
+                    );
+                    stack.push((child, b, Transform::IDENTITY));
+                }
+            }
+        }
+    }
+    if let Some(l) = visited.iter().position(|v| !v) {
+        return Err(Error::model(
+            origin,
+            format!("link \"{}\"", links[l].name),
+            "is not connected to the root (a cycle)",
+        ));
+    }
+    model.validate(origin)?;
+    Ok(model)
+}
+
+fn transform_shape(s: &Shape, x: &Transform) -> Shape {
+    match s {
+        Shape::Box { origin, size } => Shape::Box {
+            origin: x.compose(origin),
+            size: *size,
+        },
+        Shape::Cylinder { origin, radius, length } => Shape::Cylinder {
+            origin: x.compose(origin),
+            radius: *radius,
+            length: *length,
+        },
+        Shape::Capsule { a, b, radius } => Shape::Capsule {
+            a: x.act_point(a),
+            b: x.act_point(b),
+            radius: *radius,
+        },
+        Shape::Sphere { center, radius } => Shape::Sphere {
+            center: x.act_point(center),
+            radius: *radius,
+        },
+    }
+}
+
+struct UrdfLink {
+    name: String,
+    inertia: Inertia,
+    shapes: Vec<Shape>,
+}
+
+enum UrdfKind {
+    Fixed,
+    Moving(JointKind),
+}
+
+struct UrdfJoint {
+    name: String,
+    line: u32,
+    kind: UrdfKind,
+    parent: String,
+    child: String,
+    origin: Transform,
+    axis: Vec3,
+    limits: JointLimits,
+    damping: f64,
+}
+
+struct Cx<'a, 'i> {
+    origin: &'a str,
+    doc: &'a Document<'i>,
+}
+
+impl Cx<'_, '_> {
+    fn line(&self, node: Node) -> u32 {
+        self.doc.text_pos_at(node.range().start).row
+    }
+
+    fn err(&self, node: Node, element: &str, message: String) -> Error {
+        self.err_at(self.line(node), element, message)
+    }
+
+    fn err_at(&self, line: u32, element: &str, message: String) -> Error {
+        Error::model(format!("{}:{}", self.origin, line), element, message)
+    }
+
+    fn name(&self, node: Node, what: &str) -> Result<String> {
+        match node.attribute("name") {
+            Some(n) if !n.trim().is_empty() => Ok(n.to_string()),
+            _ => Err(self.err(node, &format!("<{what}>"), "has no name attribute".into())),
+        }
+    }
+
+    fn child<'n>(&self, node: Node<'n, 'n>, tag: &str) -> Option<Node<'n, 'n>> {
+        node.children().find(|c| c.is_element() && c.tag_name().name() == tag)
+    }
+
+    /// A required finite number attribute.
+    fn number(&self, node: Node, attr: &str, element: &str) -> Result<f64> {
+        let raw = node
+            .attribute(attr)
+            .ok_or_else(|| self.err(node, element, format!("missing attribute {attr}")))?;
+        parse_finite(raw).ok_or_else(|| self.err(node, element, format!("{attr}=\"{raw}\" is not a finite number")))
+    }
+
+    fn optional_number(&self, node: Node, attr: &str, element: &str, default: f64) -> Result<f64> {
+        match node.attribute(attr) {
+            None => Ok(default),
+            Some(_) => self.number(node, attr, element),
+        }
+    }
+
+    fn vec3(&self, node: Node, attr: &str, element: &str, default: Vec3) -> Result<Vec3> {
+        let Some(raw) = node.attribute(attr) else { return Ok(default) };
+        let parts: Vec<Option<f64>> = raw.split_whitespace().map(parse_finite).collect();
+        match parts.as_slice() {
+            [Some(x), Some(y), Some(z)] => Ok(Vec3::new(*x, *y, *z)),
+            _ => Err(self.err(node, element, format!("{attr}=\"{raw}\" must be three finite numbers"))),
+        }
+    }
+
+    fn origin(&self, parent: Node, element: &str) -> Result<Transform> {
+        match self.child(parent, "origin") {
+            None => Ok(Transform::IDENTITY),
+            Some(o) => {
+                let e = format!("{element} <origin>");
+                Ok(Transform::from_rpy_xyz(
+                    self.vec3(o, "rpy", &e, Vec3::zeros())?,
+                    self.vec3(o, "xyz", &e, Vec3::zeros())?,
+                ))
+            }
+        }
+    }
+
+    fn link(&self, node: Node) -> Result<UrdfLink> {
+        let name = self.name(node, "link")?;
+        let what = format!("link \"{name}\"");
+        let inertia = match self.child(node, "inertial") {
+            None => Inertia::ZERO,
+            Some(inertial) => {
+                let e = format!("{what} <inertial>");
+                let frame = self.origin(inertial, &e)?;
+                let mass_node = self
+                    .child(inertial, "mass")
+                    .ok_or_else(|| self.err(inertial, &e, "has no <mass>".into()))?;
+                let mass = self.number(mass_node, "value", &format!("{e} <mass>"))?;
+                // Zero mass is a massless frame link (common for tool frames); validation refuses a joint
+                // that then moves no mass at all.
+                if mass < 0.0 {
+                    return Err(self.err(mass_node, &format!("{e} <mass>"), format!("mass must be ≥ 0 kg, got {mass}")));
+                }
+                let inode = self
+                    .child(inertial, "inertia")
+                    .ok_or_else(|| self.err(inertial, &e, "has no <inertia>".into()))?;
+                let ie = format!("{e} <inertia>");
+                let g = |a: &str| self.optional_number(inode, a, &ie, 0.0);
+                let (ixx, iyy, izz, ixy, ixz, iyz) = (g("ixx")?, g("iyy")?, g("izz")?, g("ixy")?, g("ixz")?, g("iyz")?);
+                let local = Mat3::new(ixx, ixy, ixz, ixy, iyy, iyz, ixz, iyz, izz);
+                let inertia = Inertia::new(mass, Vec3::zeros(), local).transformed(&frame);
+                super::validate::check_inertia(&inertia).map_err(|m| self.err(inode, &ie, m))?;
+                inertia
+            }
+        };
+        let mut shapes = Vec::new();
+        for visual in node.children().filter(|c| c.is_element() && c.tag_name().name() == "visual") {
+            let e = format!("{what} <visual>");
+            let origin = self.origin(visual, &e)?;
+            let Some(geometry) = self.child(visual, "geometry") else {
+                continue;
+            };
+            for g in geometry.children().filter(|c| c.is_element()) {
+                let ge = format!("{e} <{}>", g.tag_name().name());
+                match g.tag_name().name() {
+                    "box" => shapes.push(Shape::Box {
+                        origin,
+                        size: self.vec3(g, "size", &ge, Vec3::zeros())?,
+                    }),
+                    "cylinder" => shapes.push(Shape::Cylinder {
+                        origin,
+                        radius: self.number(g, "radius", &ge)?,
+                        length: self.number(g, "length", &ge)?,
+                    }),
+                    "sphere" => shapes.push(Shape::Sphere {
+                        center: origin.translation,
+                        radius: self.number(g, "radius", &ge)?,
+                    }),
+                    _ => {} // meshes play no part
+                }
+            }
+        }
+        Ok(UrdfLink { name, inertia, shapes })
+    }
+
+    fn joint(&self, node: Node) -> Result<UrdfJoint> {
+        let name = self.name(node, "joint")?;
+        let what = format!("joint \"{name}\"");
+        let ty = node
+            .attribute("type")
+            .ok_or_else(|| self.err(node, &what, "has no type attribute".into()))?;
+        let kind = match ty {
+            "revolute" | "continuous" => UrdfKind::Moving(JointKind::Revolute),
+            "prismatic" => UrdfKind::Moving(JointKind::Prismatic),
+            "fixed" => UrdfKind::Fixed,
+            other => {
+                return Err(self.err(
+                    node,
+                    &what,
+                    format!("unknown or unsupported joint type \"{other}\" (supported: revolute, continuous, prismatic, fixed)"),
+                ))
+            }
+        };
+        let link_of = |tag: &str| -> Result<String> {
+            let n = self
+                .child(node, tag)
+                .ok_or_else(|| self.err(node, &what, format!("has no <{tag}>")))?;
+            n.attribute("link")
+                .map(str::to_string)
+                .ok_or_else(|| self.err(n, &format!("{what} <{tag}>"), "has no link attribute".into()))
+        };
+        let (parent, child) = (link_of("parent")?, link_of("child")?);
+        let origin = self.origin(node, &what)?;
+        let mut axis = Vec3::new(1.0, 0.0, 0.0);
+        if let Some(a) = self.child(node, "axis") {
+            let e = format!("{what} <axis>");
+            axis = self.vec3(a, "xyz", &e, axis)?;
+            let n = axis.norm();
+            if n < 1e-12 {
+                return Err(self.err(a, &e, "axis must not be zero".into()));
+            }
+            axis /= n;
+        }
+        let mut limits = JointLimits::default();
+        if let Some(l) = self.child(node, "limit") {
+            let e = format!("{what} <limit>");
+            limits.effort = self.optional_number(l, "effort", &e, f64::INFINITY)?;
+            limits.velocity = self.optional_number(l, "velocity", &e, f64::INFINITY)?;
+            if ty != "continuous" {
+                limits.lower = self.optional_number(l, "lower", &e, f64::NEG_INFINITY)?;
+                limits.upper = self.optional_number(l, "upper", &e, f64::INFINITY)?;
+            }
+            if limits.lower > limits.upper {
+                return Err(self.err(l, &e, format!("lower {} is above upper {}", limits.lower, limits.upper)));
+            }
+            if limits.effort < 0.0 || limits.velocity < 0.0 {
+                return Err(self.err(l, &e, "effort and velocity must be ≥ 0".into()));
+            }
+        }
+        let mut damping = 0.0;
+        if let Some(d) = self.child(node, "dynamics") {
+            let e = format!("{what} <dynamics>");
+            damping = self.optional_number(d, "damping", &e, 0.0)?;
+            if damping < 0.0 {
+                return Err(self.err(d, &e, format!("damping must be ≥ 0, got {damping}")));
+            }
+        }
+        Ok(UrdfJoint {
+            name,
+            line: self.line(node),
+            kind,
+            parent,
+            child,
+            origin,
+            axis,
+            limits,
+            damping,
+        })
+    }
+}
+
+fn parse_finite(s: &str) -> Option<f64> {
+    s.trim().parse::<f64>().ok().filter(|x| x.is_finite())
+}
