@@ -34,3 +34,92 @@ pub fn reference_files() -> Vec<PathBuf> {
 pub fn close(got: f64, want: f64, tol: f64) -> bool {
     (got - want).abs() <= tol * want.abs().max(1.0)
 }
+
+use mintorque::model::{Body, Joint, JointKind, JointLimits, Model, Passive};
+use mintorque::spatial::{axis_angle, Inertia, Mat3, Transform, Vec3};
+
+/// SplitMix64: a tiny deterministic generator so that a failing case is reproducible from its seed.
+pub struct Rng(pub u64);
+
+impl Rng {
+    pub fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+    /// Uniform in [lo, hi).
+    pub fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * ((self.next_u64() >> 11) as f64 / (1u64 << 53) as f64)
+    }
+    pub fn unit_vector(&mut self) -> Vec3 {
+        loop {
+            let v = Vec3::new(self.uniform(-1.0, 1.0), self.uniform(-1.0, 1.0), self.uniform(-1.0, 1.0));
+            let n = v.norm();
+            if n > 0.1 && n <= 1.0 {
+                return v / n;
+            }
+        }
+    }
+    pub fn vec(&mut self, n: usize, lo: f64, hi: f64) -> Vec<f64> {
+        (0..n).map(|_| self.uniform(lo, hi)).collect()
+    }
+}
+
+/// A random physically valid rigid body: principal moments from a random box, rotated at random.
+pub fn random_inertia(rng: &mut Rng) -> Inertia {
+    let m = rng.uniform(0.2, 5.0);
+    let (a, b, c) = (rng.uniform(0.05, 0.5), rng.uniform(0.05, 0.5), rng.uniform(0.05, 0.5));
+    let d = Mat3::from_diagonal(&Vec3::new(b * b + c * c, a * a + c * c, a * a + b * b)) * (m / 12.0);
+    let r = axis_angle(&rng.unit_vector(), rng.uniform(-3.0, 3.0));
+    Inertia::new(
+        m,
+        Vec3::new(rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3)),
+        r * d * r.transpose(),
+    )
+}
+
+/// A random kinematic tree of `n` joints: random parents (so chains, branches and stars all occur),
+/// random axes and placements, one joint in five prismatic.
+pub fn random_tree(seed: u64, n: usize) -> Model {
+    let mut rng = Rng(seed);
+    let mut model = Model::new(format!("random-{seed}-{n}"), "base");
+    model.bodies[0].inertia = random_inertia(&mut rng);
+    for i in 1..=n {
+        let parent = if rng.uniform(0.0, 1.0) < 0.6 {
+            i - 1
+        } else {
+            (rng.uniform(0.0, i as f64) as usize).min(i - 1)
+        };
+        let placement = Transform::new(
+            axis_angle(&rng.unit_vector(), rng.uniform(-3.0, 3.0)),
+            Vec3::new(rng.uniform(-0.5, 0.5), rng.uniform(-0.5, 0.5), rng.uniform(-0.5, 0.5)),
+        );
+        let kind = if rng.uniform(0.0, 1.0) < 0.2 {
+            JointKind::Prismatic
+        } else {
+            JointKind::Revolute
+        };
+        let joint = Joint {
+            name: format!("j{i}"),
+            kind,
+            parent,
+            placement,
+            axis: rng.unit_vector(),
+            limits: JointLimits::default(),
+            passive: Passive::default(),
+            group: None,
+        };
+        model.add_body(
+            joint,
+            Body {
+                name: format!("b{i}"),
+                inertia: random_inertia(&mut rng),
+                shapes: vec![],
+            },
+        );
+    }
+    model.validate("random tree").expect("random tree is valid");
+    model
+}

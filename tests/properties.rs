@@ -1,0 +1,146 @@
+//! Invariants of the dynamics on random trees (1–40 joints, random axes, placements and inertias):
+//! analytical derivatives against central finite differences, H symmetric positive definite,
+//! forward(inverse(q̈)) = q̈, and energy conserved in a torque-free simulation.
+
+mod common;
+
+use common::{random_tree, Rng};
+use mintorque::dynamics::{aba::aba, crba::crba, kinematics, rnea::rnea, rnea_derivatives::rnea_derivatives, Data};
+use mintorque::spatial::{Force, Vec3};
+use mintorque::Model;
+use nalgebra::{DMatrix, DVector};
+use proptest::prelude::*;
+
+const G: Vec3 = Vec3::new(0.3, -0.2, -9.81);
+
+fn state(seed: u64, n: usize) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+    let mut rng = Rng(seed ^ 0xABCDEF);
+    (rng.vec(n, -3.0, 3.0), rng.vec(n, -2.0, 2.0), rng.vec(n, -2.0, 2.0))
+}
+
+fn random_fext(model: &Model, seed: u64) -> Vec<Force> {
+    let mut rng = Rng(seed ^ 0x5555);
+    (0..model.bodies.len())
+        .map(|_| {
+            Force::new(
+                Vec3::new(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0)),
+                Vec3::new(rng.uniform(-5.0, 5.0), rng.uniform(-5.0, 5.0), rng.uniform(-5.0, 5.0)),
+            )
+        })
+        .collect()
+}
+
+/// Max |analytic − central difference| over a matrix, relative to the matrix's scale.
+fn fd_error(
+    model: &Model,
+    data: &mut Data,
+    q: &[f64],
+    v: &[f64],
+    a: &[f64],
+    fext: &[Force],
+    analytic: &DMatrix<f64>,
+    wrt: usize,
+) -> f64 {
+    let n = model.nv();
+    let h = 1e-6;
+    let mut fd = DMatrix::zeros(n, n);
+    for k in 0..n {
+        let mut plus = [q.to_vec(), v.to_vec(), a.to_vec()];
+        let mut minus = plus.clone();
+        plus[wrt][k] += h;
+        minus[wrt][k] -= h;
+        let tp = rnea(model, data, &plus[0], &plus[1], &plus[2], &G, Some(fext)).clone();
+        let tm = rnea(model, data, &minus[0], &minus[1], &minus[2], &G, Some(fext)).clone();
+        fd.set_column(k, &((tp - tm) / (2.0 * h)));
+    }
+    (analytic - &fd).abs().max() / analytic.abs().max().max(1.0)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
+
+    #[test]
+    fn derivatives_match_finite_differences(seed in any::<u64>(), n in 1usize..=40) {
+        let model = random_tree(seed, n);
+        let mut data = Data::new(&model);
+        let (q, v, a) = state(seed, n);
+        let fext = random_fext(&model, seed);
+        rnea_derivatives(&model, &mut data, &q, &v, &a, &G, Some(&fext));
+        let (dq, dv, m) = (data.dtau_dq.clone(), data.dtau_dv.clone(), data.M.clone());
+        let tau = data.tau.clone();
+        let tau_rnea = rnea(&model, &mut data, &q, &v, &a, &G, Some(&fext)).clone();
+        prop_assert!((tau - tau_rnea).amax() < 1e-9);
+        let e_q = fd_error(&model, &mut data, &q, &v, &a, &fext, &dq, 0);
+        let e_v = fd_error(&model, &mut data, &q, &v, &a, &fext, &dv, 1);
+        let e_a = fd_error(&model, &mut data, &q, &v, &a, &fext, &m, 2);
+        prop_assert!(e_q < 1e-6, "∂τ/∂q off by {e_q:e}");
+        prop_assert!(e_v < 1e-6, "∂τ/∂q̇ off by {e_v:e}");
+        prop_assert!(e_a < 1e-6, "∂τ/∂q̈ = H off by {e_a:e}");
+    }
+
+    #[test]
+    fn mass_matrix_is_symmetric_positive_definite(seed in any::<u64>(), n in 1usize..=40) {
+        let model = random_tree(seed, n);
+        let mut data = Data::new(&model);
+        let (q, v, a) = state(seed, n);
+        let h = crba(&model, &mut data, &q).clone();
+        prop_assert!((&h - h.transpose()).amax() <= 1e-12 * h.amax());
+        prop_assert!(h.clone().cholesky().is_some(), "H is not positive definite");
+        rnea_derivatives(&model, &mut data, &q, &v, &a, &G, None);
+        prop_assert!((&data.M - &h).amax() <= 1e-10 * h.amax());
+    }
+
+    #[test]
+    fn forward_dynamics_inverts_inverse_dynamics(seed in any::<u64>(), n in 1usize..=40) {
+        let model = random_tree(seed, n);
+        let mut data = Data::new(&model);
+        let (q, v, a) = state(seed, n);
+        let fext = random_fext(&model, seed);
+        let tau = rnea(&model, &mut data, &q, &v, &a, &G, Some(&fext)).clone();
+        let ddq = aba(&model, &mut data, &q, &v, tau.as_slice(), &G, Some(&fext)).clone();
+        let a = DVector::from_vec(a);
+        // H is well conditioned here but not perfectly: compare relative to the size of q̈.
+        prop_assert!((&ddq - &a).amax() <= 1e-7 * a.amax().max(1.0), "q̈ off by {:e}", (&ddq - &a).amax());
+    }
+}
+
+/// Total energy of a torque-free motion under gravity stays constant (RK4, small steps).
+#[test]
+fn energy_is_conserved_without_torque() {
+    for (seed, n) in [(1u64, 1usize), (2, 5), (3, 12), (4, 25), (5, 40)] {
+        let model = random_tree(seed, n);
+        let mut data = Data::new(&model);
+        let mut rng = Rng(seed);
+        let mut q = DVector::from_vec(rng.vec(n, -1.0, 1.0));
+        let mut v = DVector::from_vec(rng.vec(n, -0.5, 0.5));
+        let zero = vec![0.0; n];
+        let energy = |data: &mut Data, q: &DVector<f64>, v: &DVector<f64>| {
+            kinematics::placements(&model, data, q.as_slice());
+            kinematics::velocities(&model, data, v.as_slice());
+            kinematics::kinetic_energy(&model, data) + kinematics::potential_energy(&model, data, &G)
+        };
+        let e0 = energy(&mut data, &q, &v);
+        let scale = e0.abs().max(kinematics::kinetic_energy(&model, &data)).max(1.0);
+        let dt = 2e-4;
+        let mut accel =
+            |q: &DVector<f64>, v: &DVector<f64>| aba(&model, &mut data, q.as_slice(), v.as_slice(), &zero, &G, None).clone();
+        for _ in 0..2500 {
+            let k1v = accel(&q, &v);
+            let k1q = v.clone();
+            let k2v = accel(&(&q + &k1q * (dt / 2.0)), &(&v + &k1v * (dt / 2.0)));
+            let k2q = &v + &k1v * (dt / 2.0);
+            let k3v = accel(&(&q + &k2q * (dt / 2.0)), &(&v + &k2v * (dt / 2.0)));
+            let k3q = &v + &k2v * (dt / 2.0);
+            let k4v = accel(&(&q + &k3q * dt), &(&v + &k3v * dt));
+            let k4q = &v + &k3v * dt;
+            q += (k1q + k2q * 2.0 + k3q * 2.0 + k4q) * (dt / 6.0);
+            v += (k1v + k2v * 2.0 + k3v * 2.0 + k4v) * (dt / 6.0);
+        }
+        let mut data = Data::new(&model);
+        let e1 = energy(&mut data, &q, &v);
+        assert!(
+            ((e1 - e0) / scale).abs() < 1e-6,
+            "{n} joints: energy drifted from {e0} to {e1}"
+        );
+    }
+}
