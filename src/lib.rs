@@ -13,6 +13,9 @@
 //! Units are SI throughout the library; angles are radians. Files people write may use degrees where they
 //! say so.
 
+// Recursions index several per-body arrays by the same body index; iterator chains would hide the math.
+#![allow(clippy::needless_range_loop)]
+
 pub mod dynamics;
 pub mod error;
 pub mod model;

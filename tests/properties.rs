@@ -2,6 +2,8 @@
 //! analytical derivatives against central finite differences, H symmetric positive definite,
 //! forward(inverse(q̈)) = q̈, and energy conserved in a torque-free simulation.
 
+#![allow(clippy::too_many_arguments)]
+
 mod common;
 
 use common::{random_tree, Rng};

@@ -9,6 +9,8 @@
 //! `docs/dynamics.md` for the derivation.
 
 pub mod aba;
+pub mod batch;
+pub mod bench;
 pub mod crba;
 pub mod data;
 pub mod kinematics;

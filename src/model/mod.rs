@@ -275,3 +275,20 @@ impl Model {
         self.joints[1..].iter().map(|j| (j.limits.lower, j.limits.upper)).unzip()
     }
 }
+
+/// Loads a model file by its extension: `.urdf`/`.xml` as URDF, `.toml` as a figure file.
+pub fn load_any(path: &std::path::Path) -> crate::Result<Model> {
+    match path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+        .as_deref()
+    {
+        Some("urdf") | Some("xml") => urdf::load(path),
+        _ => Err(crate::Error::model(
+            path.display().to_string(),
+            "file name",
+            "unknown model file type: expected .urdf or .xml (URDF) or .toml (figure file)",
+        )),
+    }
+}

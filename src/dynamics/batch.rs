@@ -1,0 +1,175 @@
+//! Evaluating the engine on a file of states — the `mintorque dynamics` command, and how anyone checks the
+//! engine against another library on their own model. The file format is the reference data's
+//! (`../shared/reference/README.md`): `joints[].name` gives the order of every vector in the file; each
+//! state has `q`, `v`, `a` and optionally `tau_rand`. Results come back in the file's joint order.
+
+use super::{aba::aba, rnea_derivatives::rnea_derivatives, Data};
+use crate::error::{Error, Result};
+use crate::model::Model;
+use crate::spatial::Vec3;
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+#[derive(Deserialize)]
+struct RawFile {
+    joints: Vec<RawJoint>,
+    #[serde(default)]
+    gravity: Option<[f64; 3]>,
+    states: Vec<RawState>,
+}
+
+#[derive(Deserialize)]
+struct RawJoint {
+    name: String,
+}
+
+#[derive(Deserialize)]
+struct RawState {
+    q: Vec<f64>,
+    v: Vec<f64>,
+    a: Vec<f64>,
+    #[serde(default)]
+    tau_rand: Option<Vec<f64>>,
+}
+
+/// States read from a file, already mapped into the model's joint order.
+pub struct StatesFile {
+    /// For each of the file's joints, the model's dof index.
+    pub to_model: Vec<usize>,
+    pub joint_names: Vec<String>,
+    pub gravity: Option<Vec3>,
+    pub states: Vec<State>,
+}
+
+/// One state in the model's joint order.
+pub struct State {
+    pub q: Vec<f64>,
+    pub v: Vec<f64>,
+    pub a: Vec<f64>,
+    pub tau_rand: Option<Vec<f64>>,
+}
+
+/// The engine's answers for one state, in the file's joint order.
+#[derive(Serialize)]
+pub struct StateResult {
+    pub tau: Vec<f64>,
+    pub dtau_dq: Vec<Vec<f64>>,
+    pub dtau_dv: Vec<Vec<f64>>,
+    #[serde(rename = "M")]
+    pub m: Vec<Vec<f64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ddq: Option<Vec<f64>>,
+    pub root_wrench: [f64; 6],
+}
+
+impl StatesFile {
+    pub fn load(path: &Path, model: &Model) -> Result<StatesFile> {
+        let origin = path.display().to_string();
+        let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+        let raw: RawFile = serde_json::from_str(&text)
+            .map_err(|e| Error::input(&origin, format!("line {} column {}", e.line(), e.column()), e.to_string()))?;
+        let nv = model.nv();
+        let mut to_model = Vec::with_capacity(raw.joints.len());
+        for (k, j) in raw.joints.iter().enumerate() {
+            let dof = model.dof_index(&j.name).ok_or_else(|| {
+                Error::input(
+                    &origin,
+                    format!("joints[{k}].name"),
+                    format!("the model \"{}\" has no joint \"{}\"", model.name, j.name),
+                )
+            })?;
+            if to_model.contains(&dof) {
+                return Err(Error::input(
+                    &origin,
+                    format!("joints[{k}].name"),
+                    format!("joint \"{}\" is listed twice", j.name),
+                ));
+            }
+            to_model.push(dof);
+        }
+        if to_model.len() != nv {
+            let missing: Vec<&str> = (0..nv)
+                .filter(|d| !to_model.contains(d))
+                .map(|d| model.joints[d + 1].name.as_str())
+                .collect();
+            return Err(Error::input(
+                &origin,
+                "joints",
+                format!("the model's joints {} are missing from the file", missing.join(", ")),
+            ));
+        }
+        let gravity = raw.gravity.map(|g| Vec3::new(g[0], g[1], g[2]));
+        if let Some(g) = &gravity {
+            if !g.iter().all(|x| x.is_finite()) {
+                return Err(Error::input(&origin, "gravity", "must be three finite numbers"));
+            }
+        }
+        let reorder = |x: &[f64], field: String| -> Result<Vec<f64>> {
+            if x.len() != nv {
+                return Err(Error::input(
+                    &origin,
+                    field,
+                    format!("has {} values, the model has {nv} joints", x.len()),
+                ));
+            }
+            if let Some(i) = x.iter().position(|v| !v.is_finite()) {
+                return Err(Error::input(&origin, format!("{field}[{i}]"), "is not a finite number"));
+            }
+            let mut out = vec![0.0; nv];
+            for (k, &d) in to_model.iter().enumerate() {
+                out[d] = x[k];
+            }
+            Ok(out)
+        };
+        let mut states = Vec::with_capacity(raw.states.len());
+        for (s, st) in raw.states.iter().enumerate() {
+            let tau_rand = match &st.tau_rand {
+                Some(t) => Some(reorder(t, format!("states[{s}].tau_rand"))?),
+                None => None,
+            };
+            states.push(State {
+                q: reorder(&st.q, format!("states[{s}].q"))?,
+                v: reorder(&st.v, format!("states[{s}].v"))?,
+                a: reorder(&st.a, format!("states[{s}].a"))?,
+                tau_rand,
+            });
+        }
+        Ok(StatesFile {
+            to_model,
+            joint_names: raw.joints.into_iter().map(|j| j.name).collect(),
+            gravity,
+            states,
+        })
+    }
+
+    /// τ, ∂τ/∂q, ∂τ/∂q̇, H and (when `tau_rand` is given) forward dynamics for every state.
+    pub fn evaluate(&self, model: &Model, gravity: &Vec3) -> Vec<StateResult> {
+        let mut data = Data::new(model);
+        let file_vec = |x: &[f64]| self.to_model.iter().map(|&d| x[d]).collect::<Vec<f64>>();
+        let file_mat = |m: &nalgebra::DMatrix<f64>| {
+            self.to_model
+                .iter()
+                .map(|&r| self.to_model.iter().map(|&c| m[(r, c)]).collect())
+                .collect::<Vec<Vec<f64>>>()
+        };
+        self.states
+            .iter()
+            .map(|State { q, v, a, tau_rand }| {
+                rnea_derivatives(model, &mut data, q, v, a, gravity, None);
+                let w = data.root_wrench;
+                let mut out = StateResult {
+                    tau: file_vec(data.tau.as_slice()),
+                    dtau_dq: file_mat(&data.dtau_dq),
+                    dtau_dv: file_mat(&data.dtau_dv),
+                    m: file_mat(&data.M),
+                    ddq: None,
+                    root_wrench: [w.n.x, w.n.y, w.n.z, w.f.x, w.f.y, w.f.z],
+                };
+                if let Some(t) = tau_rand {
+                    out.ddq = Some(file_vec(aba(model, &mut data, q, v, t, gravity, None).as_slice()));
+                }
+                out
+            })
+            .collect()
+    }
+}
