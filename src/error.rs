@@ -6,22 +6,14 @@ use std::path::PathBuf;
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
     /// A file could not be read or written.
-    #[error("{path}: {source}")]
-    Io {
-        path: PathBuf,
-        #[source]
-        source: std::io::Error,
-    },
+    #[error("{path}: {error}")]
+    Io { path: PathBuf, error: std::io::Error },
 
     /// A model (URDF, figure file, built-in figure) is malformed or physically impossible.
     /// `origin` is the file (or the built-in's name), `element` the element or field at fault,
     /// e.g. `link "forearm" <inertial>/<mass>` or `joints.elbow.axis`.
     #[error("{origin}: {element}: {message}")]
-    Model {
-        origin: String,
-        element: String,
-        message: String,
-    },
+    Model { origin: String, element: String, message: String },
 
     /// Input that does not fit the model: a state vector of the wrong length, an unknown joint name, NaN.
     #[error("{origin}: {field}: {message}")]
@@ -34,34 +26,19 @@ pub enum Error {
 
 impl Error {
     pub fn model(origin: impl Into<String>, element: impl Into<String>, message: impl Into<String>) -> Self {
-        Error::Model {
-            origin: origin.into(),
-            element: element.into(),
-            message: message.into(),
-        }
+        Error::Model { origin: origin.into(), element: element.into(), message: message.into() }
     }
 
     pub fn input(origin: impl Into<String>, field: impl Into<String>, message: impl Into<String>) -> Self {
-        Error::Input {
-            origin: origin.into(),
-            field: field.into(),
-            message: message.into(),
-        }
+        Error::Input { origin: origin.into(), field: field.into(), message: message.into() }
     }
 
     pub fn task(origin: impl Into<String>, field: impl Into<String>, message: impl Into<String>) -> Self {
-        Error::Task {
-            origin: origin.into(),
-            field: field.into(),
-            message: message.into(),
-        }
+        Error::Task { origin: origin.into(), field: field.into(), message: message.into() }
     }
 
     pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
-        Error::Io {
-            path: path.into(),
-            source,
-        }
+        Error::Io { path: path.into(), error: source }
     }
 }
 

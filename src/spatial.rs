@@ -39,10 +39,7 @@ pub struct Force {
 }
 
 impl Motion {
-    pub const ZERO: Motion = Motion {
-        w: Vec3::new(0.0, 0.0, 0.0),
-        v: Vec3::new(0.0, 0.0, 0.0),
-    };
+    pub const ZERO: Motion = Motion { w: Vec3::new(0.0, 0.0, 0.0), v: Vec3::new(0.0, 0.0, 0.0) };
 
     #[inline]
     pub fn new(w: Vec3, v: Vec3) -> Self {
@@ -52,19 +49,13 @@ impl Motion {
     /// The motion cross product `self × m` (eq. 23: the Lie bracket `ad_self(m)`).
     #[inline]
     pub fn cross(&self, m: &Motion) -> Motion {
-        Motion {
-            w: self.w.cross(&m.w),
-            v: self.w.cross(&m.v) + self.v.cross(&m.w),
-        }
+        Motion { w: self.w.cross(&m.w), v: self.w.cross(&m.v) + self.v.cross(&m.w) }
     }
 
     /// The force cross product `self ×* f` (the dual action, `-ad_selfᵀ f`).
     #[inline]
     pub fn cross_force(&self, f: &Force) -> Force {
-        Force {
-            n: self.w.cross(&f.n) + self.v.cross(&f.f),
-            f: self.w.cross(&f.f),
-        }
+        Force { n: self.w.cross(&f.n) + self.v.cross(&f.f), f: self.w.cross(&f.f) }
     }
 
     /// The power pairing `m · f`.
@@ -75,19 +66,13 @@ impl Motion {
 
     #[inline]
     pub fn scale(&self, s: f64) -> Motion {
-        Motion {
-            w: self.w * s,
-            v: self.v * s,
-        }
+        Motion { w: self.w * s, v: self.v * s }
     }
 
     /// `self + s·m`, the axpy that the recursions are made of.
     #[inline]
     pub fn add_scaled(&self, m: &Motion, s: f64) -> Motion {
-        Motion {
-            w: self.w + m.w * s,
-            v: self.v + m.v * s,
-        }
+        Motion { w: self.w + m.w * s, v: self.v + m.v * s }
     }
 
     #[inline]
@@ -97,18 +82,12 @@ impl Motion {
 
     #[inline]
     pub fn from_vec6(x: &Vec6) -> Self {
-        Motion {
-            w: Vec3::new(x[0], x[1], x[2]),
-            v: Vec3::new(x[3], x[4], x[5]),
-        }
+        Motion { w: Vec3::new(x[0], x[1], x[2]), v: Vec3::new(x[3], x[4], x[5]) }
     }
 }
 
 impl Force {
-    pub const ZERO: Force = Force {
-        n: Vec3::new(0.0, 0.0, 0.0),
-        f: Vec3::new(0.0, 0.0, 0.0),
-    };
+    pub const ZERO: Force = Force { n: Vec3::new(0.0, 0.0, 0.0), f: Vec3::new(0.0, 0.0, 0.0) };
 
     #[inline]
     pub fn new(n: Vec3, f: Vec3) -> Self {
@@ -122,10 +101,7 @@ impl Force {
 
     #[inline]
     pub fn from_vec6(x: &Vec6) -> Self {
-        Force {
-            n: Vec3::new(x[0], x[1], x[2]),
-            f: Vec3::new(x[3], x[4], x[5]),
-        }
+        Force { n: Vec3::new(x[0], x[1], x[2]), f: Vec3::new(x[3], x[4], x[5]) }
     }
 
     /// The matrix `N(h)` with `N(h) m = m ×* h` for every motion `m` — the force cross product seen as a
@@ -148,30 +124,21 @@ macro_rules! vector_ops {
             type Output = $t;
             #[inline]
             fn add(self, o: $t) -> $t {
-                $t {
-                    $a: self.$a + o.$a,
-                    $b: self.$b + o.$b,
-                }
+                $t { $a: self.$a + o.$a, $b: self.$b + o.$b }
             }
         }
         impl std::ops::Sub for $t {
             type Output = $t;
             #[inline]
             fn sub(self, o: $t) -> $t {
-                $t {
-                    $a: self.$a - o.$a,
-                    $b: self.$b - o.$b,
-                }
+                $t { $a: self.$a - o.$a, $b: self.$b - o.$b }
             }
         }
         impl std::ops::Neg for $t {
             type Output = $t;
             #[inline]
             fn neg(self) -> $t {
-                $t {
-                    $a: -self.$a,
-                    $b: -self.$b,
-                }
+                $t { $a: -self.$a, $b: -self.$b }
             }
         }
         impl std::ops::AddAssign for $t {
@@ -192,10 +159,7 @@ macro_rules! vector_ops {
             type Output = $t;
             #[inline]
             fn mul(self, s: f64) -> $t {
-                $t {
-                    $a: self.$a * s,
-                    $b: self.$b * s,
-                }
+                $t { $a: self.$a * s, $b: self.$b * s }
             }
         }
     };
@@ -218,46 +182,32 @@ impl Default for Transform {
 }
 
 impl Transform {
-    pub const IDENTITY: Transform = Transform {
-        rotation: Mat3::new(1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0),
-        translation: Vec3::new(0.0, 0.0, 0.0),
-    };
+    pub const IDENTITY: Transform =
+        Transform { rotation: Mat3::new(1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0), translation: Vec3::new(0.0, 0.0, 0.0) };
 
     pub fn new(rotation: Mat3, translation: Vec3) -> Self {
         Transform { rotation, translation }
     }
 
     pub fn from_translation(translation: Vec3) -> Self {
-        Transform {
-            rotation: Mat3::identity(),
-            translation,
-        }
+        Transform { rotation: Mat3::identity(), translation }
     }
 
     /// URDF's `rpy`: fixed-axis roll about x, then pitch about y, then yaw about z: `R = Rz(y) Ry(p) Rx(r)`.
     pub fn from_rpy_xyz(rpy: Vec3, xyz: Vec3) -> Self {
-        Transform {
-            rotation: rpy_to_matrix(&rpy),
-            translation: xyz,
-        }
+        Transform { rotation: rpy_to_matrix(&rpy), translation: xyz }
     }
 
     /// Composition `self * other`: `other` is expressed in `self`'s child frame.
     #[inline]
     pub fn compose(&self, other: &Transform) -> Transform {
-        Transform {
-            rotation: self.rotation * other.rotation,
-            translation: self.rotation * other.translation + self.translation,
-        }
+        Transform { rotation: self.rotation * other.rotation, translation: self.rotation * other.translation + self.translation }
     }
 
     #[inline]
     pub fn inverse(&self) -> Transform {
         let rt = self.rotation.transpose();
-        Transform {
-            rotation: rt,
-            translation: -(rt * self.translation),
-        }
+        Transform { rotation: rt, translation: -(rt * self.translation) }
     }
 
     /// A point in child coordinates, to parent coordinates.
@@ -270,40 +220,28 @@ impl Transform {
     #[inline]
     pub fn act_motion(&self, m: &Motion) -> Motion {
         let w = self.rotation * m.w;
-        Motion {
-            w,
-            v: self.rotation * m.v + self.translation.cross(&w),
-        }
+        Motion { w, v: self.rotation * m.v + self.translation.cross(&w) }
     }
 
     /// A motion vector from parent to child coordinates.
     #[inline]
     pub fn act_inv_motion(&self, m: &Motion) -> Motion {
         let rt = self.rotation.transpose();
-        Motion {
-            w: rt * m.w,
-            v: rt * (m.v - self.translation.cross(&m.w)),
-        }
+        Motion { w: rt * m.w, v: rt * (m.v - self.translation.cross(&m.w)) }
     }
 
     /// A force vector from child to parent coordinates (eq. 22).
     #[inline]
     pub fn act_force(&self, f: &Force) -> Force {
         let ff = self.rotation * f.f;
-        Force {
-            n: self.rotation * f.n + self.translation.cross(&ff),
-            f: ff,
-        }
+        Force { n: self.rotation * f.n + self.translation.cross(&ff), f: ff }
     }
 
     /// A force vector from parent to child coordinates.
     #[inline]
     pub fn act_inv_force(&self, f: &Force) -> Force {
         let rt = self.rotation.transpose();
-        Force {
-            n: rt * (f.n - self.translation.cross(&f.f)),
-            f: rt * f.f,
-        }
+        Force { n: rt * (f.n - self.translation.cross(&f.f)), f: rt * f.f }
     }
 }
 
@@ -366,11 +304,8 @@ pub struct Inertia {
 }
 
 impl Inertia {
-    pub const ZERO: Inertia = Inertia {
-        mass: 0.0,
-        com: Vec3::new(0.0, 0.0, 0.0),
-        inertia_com: Mat3::new(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0),
-    };
+    pub const ZERO: Inertia =
+        Inertia { mass: 0.0, com: Vec3::new(0.0, 0.0, 0.0), inertia_com: Mat3::new(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0) };
 
     pub fn new(mass: f64, com: Vec3, inertia_com: Mat3) -> Self {
         Inertia { mass, com, inertia_com }
@@ -396,22 +331,21 @@ impl Inertia {
             let d = i.com - c;
             i.inertia_com + (Mat3::identity() * d.dot(&d) - d * d.transpose()) * i.mass
         };
-        Inertia {
-            mass: m,
-            com: c,
-            inertia_com: shift(self) + shift(o),
-        }
+        Inertia { mass: m, com: c, inertia_com: shift(self) + shift(o) }
     }
 
     /// The spatial inertia about this frame's origin in the `(m, h = m c, I_o)` form used by [`SpatialInertia`].
     pub fn spatial(&self) -> SpatialInertia {
-        let h = self.com * self.mass;
-        let cx = skew(&self.com);
-        SpatialInertia {
-            m: self.mass,
-            h,
-            i_o: self.inertia_com - cx * cx * self.mass,
-        }
+        SpatialInertia::from_com(self.mass, &self.com, &self.inertia_com)
+    }
+
+    /// The spatial inertia about the parent origin of `x` (this body's frame is `x`'s child frame):
+    /// cheaper than [`SpatialInertia::act`] because the rotation acts on the inertia about the centre of
+    /// mass only.
+    #[inline]
+    pub fn spatial_in(&self, x: &Transform) -> SpatialInertia {
+        let r = &x.rotation;
+        SpatialInertia::from_com(self.mass, &x.act_point(&self.com), &(r * self.inertia_com * r.transpose()))
     }
 }
 
@@ -432,19 +366,13 @@ impl Default for SpatialInertia {
 }
 
 impl SpatialInertia {
-    pub const ZERO: SpatialInertia = SpatialInertia {
-        m: 0.0,
-        h: Vec3::new(0.0, 0.0, 0.0),
-        i_o: Mat3::new(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0),
-    };
+    pub const ZERO: SpatialInertia =
+        SpatialInertia { m: 0.0, h: Vec3::new(0.0, 0.0, 0.0), i_o: Mat3::new(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0) };
 
     /// `I m`: the momentum of a body moving with twist `m`.
     #[inline]
     pub fn mul(&self, x: &Motion) -> Force {
-        Force {
-            n: self.i_o * x.w + self.h.cross(&x.v),
-            f: x.v * self.m - self.h.cross(&x.w),
-        }
+        Force { n: self.i_o * x.w + self.h.cross(&x.v), f: x.v * self.m - self.h.cross(&x.w) }
     }
 
     /// This inertia (given in a frame's child coordinates) expressed in the parent coordinates of `x`.
@@ -458,11 +386,19 @@ impl SpatialInertia {
         // I_o' = I_r - (p̃ (h_r)̃ + (h_r)̃ p̃) - m p̃ p̃
         let px = skew(p);
         let hx = skew(&h_r);
-        SpatialInertia {
-            m: self.m,
-            h: h_r + p * self.m,
-            i_o: i_r - px * hx - hx * px - px * px * self.m,
-        }
+        SpatialInertia { m: self.m, h: h_r + p * self.m, i_o: i_r - px * hx - hx * px - px * px * self.m }
+    }
+
+    /// The spatial inertia of a body given by its mass `m`, centre of mass `c` and rotational inertia
+    /// `inertia_com` about `c`, all in the same coordinates: `I_o = Ī + m(|c|²1 − c cᵀ)` (parallel axes).
+    #[inline]
+    pub fn from_com(m: f64, c: &Vec3, inertia_com: &Mat3) -> SpatialInertia {
+        let mut i_o = *inertia_com - c * c.transpose() * m;
+        let d = m * c.dot(c);
+        i_o[(0, 0)] += d;
+        i_o[(1, 1)] += d;
+        i_o[(2, 2)] += d;
+        SpatialInertia { m, h: c * m, i_o }
     }
 
     /// The 6×6 matrix.
@@ -552,11 +488,7 @@ mod tests {
     #[test]
     fn spatial_inertia_transforms_like_its_matrix() {
         let x = some_transform();
-        let body = Inertia::new(
-            2.5,
-            Vec3::new(0.1, -0.2, 0.3),
-            Mat3::new(0.3, 0.01, 0.02, 0.01, 0.4, -0.03, 0.02, -0.03, 0.5),
-        );
+        let body = Inertia::new(2.5, Vec3::new(0.1, -0.2, 0.3), Mat3::new(0.3, 0.01, 0.02, 0.01, 0.4, -0.03, 0.02, -0.03, 0.5));
         let i_child = body.spatial();
         let i_parent = i_child.act(&x);
         // from the com form in the parent frame

@@ -140,9 +140,6 @@ fn energy_is_conserved_without_torque() {
         }
         let mut data = Data::new(&model);
         let e1 = energy(&mut data, &q, &v);
-        assert!(
-            ((e1 - e0) / scale).abs() < 1e-6,
-            "{n} joints: energy drifted from {e0} to {e1}"
-        );
+        assert!(((e1 - e0) / scale).abs() < 1e-6, "{n} joints: energy drifted from {e0} to {e1}");
     }
 }

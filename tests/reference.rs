@@ -13,11 +13,7 @@ use serde_json::Value;
 const TOL: f64 = 1e-9;
 
 fn vec_of(v: &Value) -> Vec<f64> {
-    v.as_array()
-        .expect("array")
-        .iter()
-        .map(|x| x.as_f64().expect("number"))
-        .collect()
+    v.as_array().expect("array").iter().map(|x| x.as_f64().expect("number")).collect()
 }
 
 fn vec3(v: &Value) -> Vec3 {
@@ -36,8 +32,7 @@ impl Checker {
         let err = (got - want).abs() / want.abs().max(1.0);
         self.worst = self.worst.max(err);
         if !close(got, want, TOL) && self.failures.len() < 20 {
-            self.failures
-                .push(format!("{}: {what}: got {got:.15e}, want {want:.15e}", self.file));
+            self.failures.push(format!("{}: {what}: got {got:.15e}, want {want:.15e}", self.file));
         }
     }
 }
@@ -50,9 +45,7 @@ fn permutation(model: &Model, joints: &Value) -> Vec<usize> {
         .iter()
         .map(|j| {
             let name = j["name"].as_str().unwrap();
-            model
-                .dof_index(name)
-                .unwrap_or_else(|| panic!("joint {name} missing from our model"))
+            model.dof_index(name).unwrap_or_else(|| panic!("joint {name} missing from our model"))
         })
         .collect()
 }
@@ -70,17 +63,9 @@ fn dynamics_match_reference_data() {
         let perm = permutation(&model, &doc["joints"]);
         let gravity = vec3(&doc["gravity"]);
         let mut data = Data::new(&model);
-        let mut c = Checker {
-            file: path.file_name().unwrap().to_string_lossy().into(),
-            worst: 0.0,
-            failures: vec![],
-        };
+        let mut c = Checker { file: path.file_name().unwrap().to_string_lossy().into(), worst: 0.0, failures: vec![] };
         c.check("total_mass", model.total_mass(), doc["total_mass"].as_f64().unwrap());
-        c.check(
-            "root_link_mass",
-            model.bodies[0].inertia.mass,
-            doc["root_link_mass"].as_f64().unwrap(),
-        );
+        c.check("root_link_mass", model.bodies[0].inertia.mass, doc["root_link_mass"].as_f64().unwrap());
         let ours = |x: &[f64]| {
             let mut out = vec![0.0; nv];
             for (r, &o) in perm.iter().enumerate() {
@@ -148,11 +133,7 @@ fn dynamics_match_reference_data() {
                 c.check(&tag("com_including_root"), com_all[k], vec3(&s["com_including_root"])[k]);
             }
             kinematics::velocities(&model, &mut data, &v);
-            c.check(
-                &tag("kinetic_energy"),
-                kinematics::kinetic_energy(&model, &data),
-                s["kinetic_energy"].as_f64().unwrap(),
-            );
+            c.check(&tag("kinetic_energy"), kinematics::kinetic_energy(&model, &data), s["kinetic_energy"].as_f64().unwrap());
             // External force on one link, given in its joint's frame (moment about the joint origin).
             let fe = &s["fext"];
             let body = model.dof_index(fe["joint"].as_str().unwrap()).unwrap() + 1;
@@ -161,19 +142,9 @@ fn dynamics_match_reference_data() {
             let tau_ext = rnea(&model, &mut data, &q, &v, &a, &gravity, Some(&fext)).clone();
             vector(&mut c, "fext tau", tau_ext.as_slice(), &fe["tau"]);
         }
-        summary.push(format!(
-            "{}: {} states, worst relative error {:.2e}",
-            c.file,
-            states.len(),
-            c.worst
-        ));
+        summary.push(format!("{}: {} states, worst relative error {:.2e}", c.file, states.len(), c.worst));
         all_failures.extend(c.failures);
     }
     println!("{}", summary.join("\n"));
-    assert!(
-        all_failures.is_empty(),
-        "{} mismatches, first ones:\n{}",
-        all_failures.len(),
-        all_failures.join("\n")
-    );
+    assert!(all_failures.is_empty(), "{} mismatches, first ones:\n{}", all_failures.len(), all_failures.join("\n"));
 }

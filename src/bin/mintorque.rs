@@ -9,11 +9,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 #[derive(Parser)]
-#[command(
-    name = "mintorque",
-    version,
-    about = "Minimum-joint-torque motion planning for articulated figures"
-)]
+#[command(name = "mintorque", version, about = "Minimum-joint-torque motion planning for articulated figures")]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -44,12 +40,7 @@ fn load_model(path: &Path) -> Result<mintorque::Model> {
 
 fn run(cli: Cli) -> Result<()> {
     match cli.command {
-        Command::Dynamics {
-            model,
-            states,
-            gravity,
-            bench: do_bench,
-        } => {
+        Command::Dynamics { model, states, gravity, bench: do_bench } => {
             let model = load_model(&model)?;
             let file = match &states {
                 Some(p) => Some(StatesFile::load(p, &model)?),
@@ -57,10 +48,7 @@ fn run(cli: Cli) -> Result<()> {
             };
             let g = match (&gravity, file.as_ref().and_then(|f| f.gravity)) {
                 (Some(g), _) => {
-                    anyhow::ensure!(
-                        g.iter().all(|x| x.is_finite()),
-                        "--gravity: must be three finite numbers (m/s²)"
-                    );
+                    anyhow::ensure!(g.iter().all(|x| x.is_finite()), "--gravity: must be three finite numbers (m/s²)");
                     Vec3::new(g[0], g[1], g[2])
                 }
                 (None, Some(g)) => g,

@@ -79,19 +79,13 @@ impl StatesFile {
                 )
             })?;
             if to_model.contains(&dof) {
-                return Err(Error::input(
-                    &origin,
-                    format!("joints[{k}].name"),
-                    format!("joint \"{}\" is listed twice", j.name),
-                ));
+                return Err(Error::input(&origin, format!("joints[{k}].name"), format!("joint \"{}\" is listed twice", j.name)));
             }
             to_model.push(dof);
         }
         if to_model.len() != nv {
-            let missing: Vec<&str> = (0..nv)
-                .filter(|d| !to_model.contains(d))
-                .map(|d| model.joints[d + 1].name.as_str())
-                .collect();
+            let missing: Vec<&str> =
+                (0..nv).filter(|d| !to_model.contains(d)).map(|d| model.joints[d + 1].name.as_str()).collect();
             return Err(Error::input(
                 &origin,
                 "joints",
@@ -106,11 +100,7 @@ impl StatesFile {
         }
         let reorder = |x: &[f64], field: String| -> Result<Vec<f64>> {
             if x.len() != nv {
-                return Err(Error::input(
-                    &origin,
-                    field,
-                    format!("has {} values, the model has {nv} joints", x.len()),
-                ));
+                return Err(Error::input(&origin, field, format!("has {} values, the model has {nv} joints", x.len())));
             }
             if let Some(i) = x.iter().position(|v| !v.is_finite()) {
                 return Err(Error::input(&origin, format!("{field}[{i}]"), "is not a finite number"));
@@ -134,12 +124,7 @@ impl StatesFile {
                 tau_rand,
             });
         }
-        Ok(StatesFile {
-            to_model,
-            joint_names: raw.joints.into_iter().map(|j| j.name).collect(),
-            gravity,
-            states,
-        })
+        Ok(StatesFile { to_model, joint_names: raw.joints.into_iter().map(|j| j.name).collect(), gravity, states })
     }
 
     /// τ, ∂τ/∂q, ∂τ/∂q̇, H and (when `tau_rand` is given) forward dynamics for every state.
@@ -147,10 +132,7 @@ impl StatesFile {
         let mut data = Data::new(model);
         let file_vec = |x: &[f64]| self.to_model.iter().map(|&d| x[d]).collect::<Vec<f64>>();
         let file_mat = |m: &nalgebra::DMatrix<f64>| {
-            self.to_model
-                .iter()
-                .map(|&r| self.to_model.iter().map(|&c| m[(r, c)]).collect())
-                .collect::<Vec<Vec<f64>>>()
+            self.to_model.iter().map(|&r| self.to_model.iter().map(|&c| m[(r, c)]).collect()).collect::<Vec<Vec<f64>>>()
         };
         self.states
             .iter()

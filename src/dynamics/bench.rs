@@ -37,10 +37,7 @@ pub fn random_states(model: &Model, count: usize, seed: u64) -> Vec<[Vec<f64>; 4
             let q = model.joints[1..]
                 .iter()
                 .map(|j| {
-                    let (lo, hi) = (
-                        j.limits.lower.max(-std::f64::consts::PI),
-                        j.limits.upper.min(std::f64::consts::PI),
-                    );
+                    let (lo, hi) = (j.limits.lower.max(-std::f64::consts::PI), j.limits.upper.min(std::f64::consts::PI));
                     lo + (hi - lo) * next()
                 })
                 .collect();

@@ -2,14 +2,14 @@
 //! call so that no algorithm allocates in its hot path. Per-body arrays are indexed by body (0 = root).
 
 use crate::model::Model;
-use crate::spatial::{Force, Mat3, Mat6, Motion, SpatialInertia, Transform, Vec3, Vec6};
+use crate::spatial::{Force, Inertia, Mat3, Mat6, Motion, SpatialInertia, Transform, Vec3, Vec6};
 use nalgebra::{DMatrix, DVector};
 
 #[allow(non_snake_case)]
 #[derive(Clone, Debug)]
 pub struct Data {
     /// Body inertias in their own frames (constant; cached from the model).
-    pub I_local: Vec<SpatialInertia>,
+    pub I_local: Vec<Inertia>,
 
     // ---- forward pass (kinematics.rs) ----
     /// World placement of each body frame, `⁰Mᵢ`.
@@ -64,7 +64,7 @@ impl Data {
         let nb = model.bodies.len();
         let nv = model.nv();
         Data {
-            I_local: model.bodies.iter().map(|b| b.inertia.spatial()).collect(),
+            I_local: model.bodies.iter().map(|b| b.inertia).collect(),
             oMi: vec![Transform::IDENTITY; nb],
             S: vec![Motion::ZERO; nb],
             oI: vec![SpatialInertia::ZERO; nb],

@@ -29,14 +29,14 @@ pub fn local_axis(kind: JointKind, axis: &Vec3) -> Motion {
 pub fn placements(model: &Model, data: &mut Data, q: &[f64]) {
     debug_assert_eq!(q.len(), model.nv());
     data.oMi[0] = Transform::IDENTITY;
-    data.oI[0] = data.I_local[0];
+    data.oI[0] = data.I_local[0].spatial();
     for i in 1..model.bodies.len() {
         let joint = &model.joints[i];
         // ⁰Mᵢ = ⁰M_λ(i) · Dᵢ · e^{Ŝᵢ qᵢ}   (eq. 17)
         let x_parent = joint.placement.compose(&joint_transform(joint.kind, &joint.axis, q[i - 1]));
         let o_m_i = data.oMi[joint.parent].compose(&x_parent);
         data.S[i] = o_m_i.act_motion(&local_axis(joint.kind, &joint.axis));
-        data.oI[i] = data.I_local[i].act(&o_m_i);
+        data.oI[i] = data.I_local[i].spatial_in(&o_m_i);
         data.oMi[i] = o_m_i;
     }
 }
@@ -73,17 +73,13 @@ pub fn frame_placement(model: &Model, data: &Data, frame: usize) -> Transform {
 /// massless.
 pub fn center_of_mass(model: &Model, data: &Data, include_root: bool) -> Option<Vec3> {
     let first = if include_root { 0 } else { 1 };
-    let (m, h) = data.oI[first..model.bodies.len()]
-        .iter()
-        .fold((0.0, Vec3::zeros()), |(m, h), i| (m + i.m, h + i.h));
+    let (m, h) = data.oI[first..model.bodies.len()].iter().fold((0.0, Vec3::zeros()), |(m, h), i| (m + i.m, h + i.h));
     (m > 0.0).then(|| h / m)
 }
 
 /// Kinetic energy `½ Σ vᵢ · (Iᵢ vᵢ)` after [`velocities`].
 pub fn kinetic_energy(model: &Model, data: &Data) -> f64 {
-    (1..model.bodies.len())
-        .map(|i| 0.5 * data.v[i].dot(&data.oI[i].mul(&data.v[i])))
-        .sum()
+    (1..model.bodies.len()).map(|i| 0.5 * data.v[i].dot(&data.oI[i].mul(&data.v[i]))).sum()
 }
 
 /// Potential energy `−Σ mᵢ g · cᵢ` after [`placements`] (zero at the world origin).

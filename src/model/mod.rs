@@ -37,12 +37,7 @@ pub struct JointLimits {
 
 impl Default for JointLimits {
     fn default() -> Self {
-        JointLimits {
-            lower: f64::NEG_INFINITY,
-            upper: f64::INFINITY,
-            velocity: f64::INFINITY,
-            effort: f64::INFINITY,
-        }
+        JointLimits { lower: f64::NEG_INFINITY, upper: f64::INFINITY, velocity: f64::INFINITY, effort: f64::INFINITY }
     }
 }
 
@@ -158,16 +153,8 @@ impl Model {
                 passive: Passive::default(),
                 group: None,
             }],
-            bodies: vec![Body {
-                name: root_name.clone(),
-                inertia: Inertia::ZERO,
-                shapes: vec![],
-            }],
-            frames: vec![Frame {
-                name: root_name,
-                body: 0,
-                placement: Transform::IDENTITY,
-            }],
+            bodies: vec![Body { name: root_name.clone(), inertia: Inertia::ZERO, shapes: vec![] }],
+            frames: vec![Frame { name: root_name, body: 0, placement: Transform::IDENTITY }],
             gravity: Vec3::new(0.0, 0.0, -9.81),
         }
     }
@@ -176,11 +163,7 @@ impl Model {
     /// body's name. Callers must add parents before children (validated by [`Model::validate`]).
     pub fn add_body(&mut self, joint: Joint, body: Body) -> usize {
         let i = self.bodies.len();
-        self.frames.push(Frame {
-            name: body.name.clone(),
-            body: i,
-            placement: Transform::IDENTITY,
-        });
+        self.frames.push(Frame { name: body.name.clone(), body: i, placement: Transform::IDENTITY });
         self.joints.push(joint);
         self.bodies.push(body);
         i
@@ -216,11 +199,7 @@ impl Model {
             let b = if k + 1 == axes.len() {
                 body.take().expect("last axis carries the body")
             } else {
-                Body {
-                    name: joint_name,
-                    inertia: Inertia::ZERO,
-                    shapes: vec![],
-                }
+                Body { name: joint_name, inertia: Inertia::ZERO, shapes: vec![] }
             };
             parent = self.add_body(joint, b);
             placement = Transform::IDENTITY;
@@ -278,12 +257,7 @@ impl Model {
 
 /// Loads a model file by its extension: `.urdf`/`.xml` as URDF, `.toml` as a figure file.
 pub fn load_any(path: &std::path::Path) -> crate::Result<Model> {
-    match path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase)
-        .as_deref()
-    {
+    match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
         Some("urdf") | Some("xml") => urdf::load(path),
         _ => Err(crate::Error::model(
             path.display().to_string(),

@@ -25,11 +25,7 @@ pub fn parse(text: &str, origin: &str) -> Result<Model> {
     let cx = Cx { origin, doc: &doc };
     let robot = doc.root_element();
     if robot.tag_name().name() != "robot" {
-        return Err(cx.err(
-            robot,
-            "root element",
-            format!("expected <robot>, found <{}>", robot.tag_name().name()),
-        ));
+        return Err(cx.err(robot, "root element", format!("expected <robot>, found <{}>", robot.tag_name().name())));
     }
     let mut links: Vec<UrdfLink> = Vec::new();
     let mut link_index: HashMap<String, usize> = HashMap::new();
@@ -81,13 +77,7 @@ pub fn parse(text: &str, origin: &str) -> Result<Model> {
     let roots: Vec<usize> = (0..links.len()).filter(|&l| parent_joint[l].is_none()).collect();
     match roots.len() {
         1 => {}
-        0 => {
-            return Err(Error::model(
-                origin,
-                "<robot>",
-                "every link has a parent joint: the joints form a cycle",
-            ))
-        }
+        0 => return Err(Error::model(origin, "<robot>", "every link has a parent joint: the joints form a cycle")),
         _ => {
             let names: Vec<&str> = roots.iter().map(|&l| links[l].name.as_str()).collect();
             return Err(Error::model(
@@ -120,14 +110,8 @@ pub fn parse(text: &str, origin: &str) -> Result<Model> {
                 UrdfKind::Fixed => {
                     let merged = model.bodies[body].inertia.merged(&l.inertia.transformed(&placement));
                     model.bodies[body].inertia = merged;
-                    model.bodies[body]
-                        .shapes
-                        .extend(l.shapes.iter().map(|s| transform_shape(s, &placement)));
-                    model.frames.push(Frame {
-                        name: l.name.clone(),
-                        body,
-                        placement,
-                    });
+                    model.bodies[body].shapes.extend(l.shapes.iter().map(|s| transform_shape(s, &placement)));
+                    model.frames.push(Frame { name: l.name.clone(), body, placement });
                     stack.push((child, body, placement));
                 }
                 UrdfKind::Moving(kind) => {
@@ -138,32 +122,17 @@ pub fn parse(text: &str, origin: &str) -> Result<Model> {
                         placement,
                         axis: j.axis,
                         limits: j.limits,
-                        passive: Passive {
-                            stiffness: 0.0,
-                            rest: 0.0,
-                            damping: j.damping,
-                        },
+                        passive: Passive { stiffness: 0.0, rest: 0.0, damping: j.damping },
                         group: None,
                     };
-                    let b = model.add_body(
-                        joint,
-                        Body {
-                            name: l.name.clone(),
-                            inertia: l.inertia,
-                            shapes: l.shapes.clone(),
-                        },
-                    );
+                    let b = model.add_body(joint, Body { name: l.name.clone(), inertia: l.inertia, shapes: l.shapes.clone() });
                     stack.push((child, b, Transform::IDENTITY));
                 }
             }
         }
     }
     if let Some(l) = visited.iter().position(|v| !v) {
-        return Err(Error::model(
-            origin,
-            format!("link \"{}\"", links[l].name),
-            "is not connected to the root (a cycle)",
-        ));
+        return Err(Error::model(origin, format!("link \"{}\"", links[l].name), "is not connected to the root (a cycle)"));
     }
     model.validate(origin)?;
     Ok(model)
@@ -171,24 +140,12 @@ pub fn parse(text: &str, origin: &str) -> Result<Model> {
 
 fn transform_shape(s: &Shape, x: &Transform) -> Shape {
     match s {
-        Shape::Box { origin, size } => Shape::Box {
-            origin: x.compose(origin),
-            size: *size,
-        },
-        Shape::Cylinder { origin, radius, length } => Shape::Cylinder {
-            origin: x.compose(origin),
-            radius: *radius,
-            length: *length,
-        },
-        Shape::Capsule { a, b, radius } => Shape::Capsule {
-            a: x.act_point(a),
-            b: x.act_point(b),
-            radius: *radius,
-        },
-        Shape::Sphere { center, radius } => Shape::Sphere {
-            center: x.act_point(center),
-            radius: *radius,
-        },
+        Shape::Box { origin, size } => Shape::Box { origin: x.compose(origin), size: *size },
+        Shape::Cylinder { origin, radius, length } => {
+            Shape::Cylinder { origin: x.compose(origin), radius: *radius, length: *length }
+        }
+        Shape::Capsule { a, b, radius } => Shape::Capsule { a: x.act_point(a), b: x.act_point(b), radius: *radius },
+        Shape::Sphere { center, radius } => Shape::Sphere { center: x.act_point(center), radius: *radius },
     }
 }
 
@@ -246,9 +203,7 @@ impl Cx<'_, '_> {
 
     /// A required finite number attribute.
     fn number(&self, node: Node, attr: &str, element: &str) -> Result<f64> {
-        let raw = node
-            .attribute(attr)
-            .ok_or_else(|| self.err(node, element, format!("missing attribute {attr}")))?;
+        let raw = node.attribute(attr).ok_or_else(|| self.err(node, element, format!("missing attribute {attr}")))?;
         parse_finite(raw).ok_or_else(|| self.err(node, element, format!("{attr}=\"{raw}\" is not a finite number")))
     }
 
@@ -273,10 +228,7 @@ impl Cx<'_, '_> {
             None => Ok(Transform::IDENTITY),
             Some(o) => {
                 let e = format!("{element} <origin>");
-                Ok(Transform::from_rpy_xyz(
-                    self.vec3(o, "rpy", &e, Vec3::zeros())?,
-                    self.vec3(o, "xyz", &e, Vec3::zeros())?,
-                ))
+                Ok(Transform::from_rpy_xyz(self.vec3(o, "rpy", &e, Vec3::zeros())?, self.vec3(o, "xyz", &e, Vec3::zeros())?))
             }
         }
     }
@@ -289,18 +241,14 @@ impl Cx<'_, '_> {
             Some(inertial) => {
                 let e = format!("{what} <inertial>");
                 let frame = self.origin(inertial, &e)?;
-                let mass_node = self
-                    .child(inertial, "mass")
-                    .ok_or_else(|| self.err(inertial, &e, "has no <mass>".into()))?;
+                let mass_node = self.child(inertial, "mass").ok_or_else(|| self.err(inertial, &e, "has no <mass>".into()))?;
                 let mass = self.number(mass_node, "value", &format!("{e} <mass>"))?;
                 // Zero mass is a massless frame link (common for tool frames); validation refuses a joint
                 // that then moves no mass at all.
                 if mass < 0.0 {
                     return Err(self.err(mass_node, &format!("{e} <mass>"), format!("mass must be ≥ 0 kg, got {mass}")));
                 }
-                let inode = self
-                    .child(inertial, "inertia")
-                    .ok_or_else(|| self.err(inertial, &e, "has no <inertia>".into()))?;
+                let inode = self.child(inertial, "inertia").ok_or_else(|| self.err(inertial, &e, "has no <inertia>".into()))?;
                 let ie = format!("{e} <inertia>");
                 let g = |a: &str| self.optional_number(inode, a, &ie, 0.0);
                 let (ixx, iyy, izz, ixy, ixz, iyz) = (g("ixx")?, g("iyy")?, g("izz")?, g("ixy")?, g("ixz")?, g("iyz")?);
@@ -320,19 +268,13 @@ impl Cx<'_, '_> {
             for g in geometry.children().filter(|c| c.is_element()) {
                 let ge = format!("{e} <{}>", g.tag_name().name());
                 match g.tag_name().name() {
-                    "box" => shapes.push(Shape::Box {
-                        origin,
-                        size: self.vec3(g, "size", &ge, Vec3::zeros())?,
-                    }),
+                    "box" => shapes.push(Shape::Box { origin, size: self.vec3(g, "size", &ge, Vec3::zeros())? }),
                     "cylinder" => shapes.push(Shape::Cylinder {
                         origin,
                         radius: self.number(g, "radius", &ge)?,
                         length: self.number(g, "length", &ge)?,
                     }),
-                    "sphere" => shapes.push(Shape::Sphere {
-                        center: origin.translation,
-                        radius: self.number(g, "radius", &ge)?,
-                    }),
+                    "sphere" => shapes.push(Shape::Sphere { center: origin.translation, radius: self.number(g, "radius", &ge)? }),
                     _ => {} // meshes play no part
                 }
             }
@@ -343,9 +285,7 @@ impl Cx<'_, '_> {
     fn joint(&self, node: Node) -> Result<UrdfJoint> {
         let name = self.name(node, "joint")?;
         let what = format!("joint \"{name}\"");
-        let ty = node
-            .attribute("type")
-            .ok_or_else(|| self.err(node, &what, "has no type attribute".into()))?;
+        let ty = node.attribute("type").ok_or_else(|| self.err(node, &what, "has no type attribute".into()))?;
         let kind = match ty {
             "revolute" | "continuous" => UrdfKind::Moving(JointKind::Revolute),
             "prismatic" => UrdfKind::Moving(JointKind::Prismatic),
@@ -359,9 +299,7 @@ impl Cx<'_, '_> {
             }
         };
         let link_of = |tag: &str| -> Result<String> {
-            let n = self
-                .child(node, tag)
-                .ok_or_else(|| self.err(node, &what, format!("has no <{tag}>")))?;
+            let n = self.child(node, tag).ok_or_else(|| self.err(node, &what, format!("has no <{tag}>")))?;
             n.attribute("link")
                 .map(str::to_string)
                 .ok_or_else(|| self.err(n, &format!("{what} <{tag}>"), "has no link attribute".into()))
@@ -402,17 +340,7 @@ impl Cx<'_, '_> {
                 return Err(self.err(d, &e, format!("damping must be ≥ 0, got {damping}")));
             }
         }
-        Ok(UrdfJoint {
-            name,
-            line: self.line(node),
-            kind,
-            parent,
-            child,
-            origin,
-            axis,
-            limits,
-            damping,
-        })
+        Ok(UrdfJoint { name, line: self.line(node), kind, parent, child, origin, axis, limits, damping })
     }
 }
 

@@ -23,13 +23,7 @@ impl Model {
                 return err(element, "only joint 0 may be the root".into());
             }
             if j.parent >= i {
-                return err(
-                    element,
-                    format!(
-                        "its parent body {} does not come before it (a cycle or a broken tree)",
-                        j.parent
-                    ),
-                );
+                return err(element, format!("its parent body {} does not come before it (a cycle or a broken tree)", j.parent));
             }
             let n = j.axis.norm();
             if !n.is_finite() || (n - 1.0).abs() > 1e-9 {
@@ -44,10 +38,7 @@ impl Model {
             }
             let l = &j.limits;
             if l.lower.is_nan() || l.upper.is_nan() || l.lower > l.upper {
-                return err(
-                    element,
-                    format!("limits must satisfy lower ≤ upper, got [{}, {}]", l.lower, l.upper),
-                );
+                return err(element, format!("limits must satisfy lower ≤ upper, got [{}, {}]", l.lower, l.upper));
             }
             if l.velocity.is_nan() || l.velocity < 0.0 || l.effort.is_nan() || l.effort < 0.0 {
                 return err(element, "velocity and effort limits must be ≥ 0".into());
@@ -70,10 +61,7 @@ impl Model {
                 return err(format!("frame \"{}\"", f.name), "duplicate frame name".into());
             }
             if f.body >= self.bodies.len() {
-                return err(
-                    format!("frame \"{}\"", f.name),
-                    "attached to a body that does not exist".into(),
-                );
+                return err(format!("frame \"{}\"", f.name), "attached to a body that does not exist".into());
             }
         }
         // Every degree of freedom must move some mass, or H(q) is singular.
@@ -121,14 +109,10 @@ pub fn check_inertia(i: &Inertia) -> std::result::Result<(), String> {
     let (a, b, c) = (eig[0], eig[1], eig[2]);
     let tol = 1e-9 * scale;
     if a < -tol || b < -tol || c < -tol {
-        return Err(format!(
-            "inertia is not positive semi-definite (principal moments {a:.6e}, {b:.6e}, {c:.6e} kg·m²)"
-        ));
+        return Err(format!("inertia is not positive semi-definite (principal moments {a:.6e}, {b:.6e}, {c:.6e} kg·m²)"));
     }
     if a + b < c - tol || a + c < b - tol || b + c < a - tol {
-        return Err(format!(
-            "principal moments {a:.6e}, {b:.6e}, {c:.6e} kg·m² break the triangle inequality"
-        ));
+        return Err(format!("principal moments {a:.6e}, {b:.6e}, {c:.6e} kg·m² break the triangle inequality"));
     }
     Ok(())
 }

@@ -22,11 +22,7 @@ pub fn reference_files() -> Vec<PathBuf> {
         .filter(|p| p.extension().is_some_and(|e| e == "json"))
         .collect();
     files.sort();
-    assert!(
-        files.len() >= 4,
-        "expected at least four reference files, found {}",
-        files.len()
-    );
+    assert!(files.len() >= 4, "expected at least four reference files, found {}", files.len());
     files
 }
 
@@ -73,11 +69,7 @@ pub fn random_inertia(rng: &mut Rng) -> Inertia {
     let (a, b, c) = (rng.uniform(0.05, 0.5), rng.uniform(0.05, 0.5), rng.uniform(0.05, 0.5));
     let d = Mat3::from_diagonal(&Vec3::new(b * b + c * c, a * a + c * c, a * a + b * b)) * (m / 12.0);
     let r = axis_angle(&rng.unit_vector(), rng.uniform(-3.0, 3.0));
-    Inertia::new(
-        m,
-        Vec3::new(rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3)),
-        r * d * r.transpose(),
-    )
+    Inertia::new(m, Vec3::new(rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3)), r * d * r.transpose())
 }
 
 /// A random kinematic tree of `n` joints: random parents (so chains, branches and stars all occur),
@@ -87,20 +79,12 @@ pub fn random_tree(seed: u64, n: usize) -> Model {
     let mut model = Model::new(format!("random-{seed}-{n}"), "base");
     model.bodies[0].inertia = random_inertia(&mut rng);
     for i in 1..=n {
-        let parent = if rng.uniform(0.0, 1.0) < 0.6 {
-            i - 1
-        } else {
-            (rng.uniform(0.0, i as f64) as usize).min(i - 1)
-        };
+        let parent = if rng.uniform(0.0, 1.0) < 0.6 { i - 1 } else { (rng.uniform(0.0, i as f64) as usize).min(i - 1) };
         let placement = Transform::new(
             axis_angle(&rng.unit_vector(), rng.uniform(-3.0, 3.0)),
             Vec3::new(rng.uniform(-0.5, 0.5), rng.uniform(-0.5, 0.5), rng.uniform(-0.5, 0.5)),
         );
-        let kind = if rng.uniform(0.0, 1.0) < 0.2 {
-            JointKind::Prismatic
-        } else {
-            JointKind::Revolute
-        };
+        let kind = if rng.uniform(0.0, 1.0) < 0.2 { JointKind::Prismatic } else { JointKind::Revolute };
         let joint = Joint {
             name: format!("j{i}"),
             kind,
@@ -111,14 +95,7 @@ pub fn random_tree(seed: u64, n: usize) -> Model {
             passive: Passive::default(),
             group: None,
         };
-        model.add_body(
-            joint,
-            Body {
-                name: format!("b{i}"),
-                inertia: random_inertia(&mut rng),
-                shapes: vec![],
-            },
-        );
+        model.add_body(joint, Body { name: format!("b{i}"), inertia: random_inertia(&mut rng), shapes: vec![] });
     }
     model.validate("random tree").expect("random tree is valid");
     model
