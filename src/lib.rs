@@ -20,6 +20,7 @@ pub mod dynamics;
 pub mod error;
 pub mod model;
 pub mod spatial;
+pub mod trajectory;
 
 pub use error::{Error, Result};
 pub use model::Model;
