@@ -51,10 +51,7 @@ impl BasisAt {
     /// If `q`, `qd` or `qdd` is not `nv` long or `x` is too short for `first + 4` control points
     /// (a programming error, not bad input).
     pub fn eval(&self, x: &[f64], nv: usize, q: &mut [f64], qd: &mut [f64], qdd: &mut [f64]) {
-        assert!(
-            q.len() == nv && qd.len() == nv && qdd.len() == nv,
-            "BasisAt::eval: outputs must have nv = {nv} entries"
-        );
+        assert!(q.len() == nv && qd.len() == nv && qdd.len() == nv, "BasisAt::eval: outputs must have nv = {nv} entries");
         q.fill(0.0);
         qd.fill(0.0);
         qdd.fill(0.0);
@@ -140,11 +137,7 @@ impl CubicBSpline {
             ));
         }
         if !(duration.is_finite() && duration > 0.0) {
-            return Err(Error::input(
-                ORIGIN,
-                "duration",
-                format!("must be a positive finite time in seconds, got {duration}"),
-            ));
+            return Err(Error::input(ORIGIN, "duration", format!("must be a positive finite time in seconds, got {duration}")));
         }
         let n_spans = n_ctrl - DEGREE;
         let h = duration / n_spans as f64;
@@ -160,12 +153,7 @@ impl CubicBSpline {
         // T · (k / n_spans) rather than k h: the last knot is exactly T, and nothing overflows for huge T.
         knots.extend((0..=n_spans).map(|k| duration * (k as f64 / n_spans as f64)));
         knots.extend([duration; DEGREE]);
-        Ok(CubicBSpline {
-            n_ctrl,
-            duration,
-            h,
-            knots,
-        })
+        Ok(CubicBSpline { n_ctrl, duration, h, knots })
     }
 
     /// Number of control points `N`.
@@ -231,12 +219,7 @@ impl CubicBSpline {
         let b2 = self.cox_de_boor_step(i, 2, t, &b1);
         let b3 = self.cox_de_boor_step(i, 3, t, &b2);
         let db2 = self.derivative_step(i, 2, &b1);
-        BasisAt {
-            first: s,
-            b: b3,
-            db: self.derivative_step(i, 3, &b2),
-            ddb: self.derivative_step(i, 3, &db2),
-        }
+        BasisAt { first: s, b: b3, db: self.derivative_step(i, 3, &b2), ddb: self.derivative_step(i, 3, &db2) }
     }
 
     /// From the `d` non-zero functions of degree `d − 1` on span `i` (`lower[r] = B_{i−d+1+r, d−1}`) to the
@@ -289,11 +272,7 @@ impl CubicBSpline {
         }
         let rule = GaussLegendre::new(per_span)?;
         let count = per_span * self.n_spans();
-        let mut nodes = Nodes {
-            t: Vec::with_capacity(count),
-            w: Vec::with_capacity(count),
-            basis: Vec::with_capacity(count),
-        };
+        let mut nodes = Nodes { t: Vec::with_capacity(count), w: Vec::with_capacity(count), basis: Vec::with_capacity(count) };
         for s in 0..self.n_spans() {
             let (a, b) = (self.knots[s + DEGREE], self.knots[s + ORDER]);
             for (t, w) in rule.on_interval(a, b) {
@@ -310,16 +289,9 @@ impl CubicBSpline {
     /// Times must be finite and in `[0, T]`; a time beyond an end by no more than `1e-12 T` (rounding in
     /// a caller's `k · dt`) is clamped to it.
     pub fn grid(&self, times: &[f64]) -> Result<Nodes> {
-        let t = times
-            .iter()
-            .map(|&t| self.checked_time(t, "times"))
-            .collect::<Result<Vec<f64>>>()?;
+        let t = times.iter().map(|&t| self.checked_time(t, "times")).collect::<Result<Vec<f64>>>()?;
         let basis = t.iter().map(|&t| self.basis(t)).collect();
-        Ok(Nodes {
-            w: vec![0.0; t.len()],
-            t,
-            basis,
-        })
+        Ok(Nodes { w: vec![0.0; t.len()], t, basis })
     }
 
     /// `t` clamped into `[0, T]` if within `1e-12 T` of it, else an error naming `field`.
@@ -328,11 +300,7 @@ impl CubicBSpline {
         if t.is_finite() && t >= -slack && t <= self.duration + slack {
             Ok(t.clamp(0.0, self.duration))
         } else {
-            Err(Error::input(
-                ORIGIN,
-                field,
-                format!("time {t} s is outside the motion [0, {} s]", self.duration),
-            ))
+            Err(Error::input(ORIGIN, field, format!("time {t} s is outside the motion [0, {} s]", self.duration)))
         }
     }
 
@@ -342,11 +310,7 @@ impl CubicBSpline {
     /// # Panics
     /// If `x.len() != N · nv` or an output is not `nv` long (a programming error).
     pub fn eval(&self, x: &[f64], nv: usize, t: f64, q: &mut [f64], qd: &mut [f64], qdd: &mut [f64]) {
-        assert_eq!(
-            x.len(),
-            self.n_ctrl * nv,
-            "CubicBSpline::eval: x must hold N · nv control points"
-        );
+        assert_eq!(x.len(), self.n_ctrl * nv, "CubicBSpline::eval: x must hold N · nv control points");
         self.basis(t).eval(x, nv, q, qd, qdd);
     }
 
@@ -386,9 +350,7 @@ impl CubicBSpline {
     /// Greville abscissae `τ_j = (t_{j+1} + t_{j+2} + t_{j+3})/3`: control points `c_j = f(τ_j)` reproduce
     /// any straight line `f` exactly (linear precision), and interpolation at them is always well-posed.
     pub fn greville(&self) -> Vec<f64> {
-        (0..self.n_ctrl)
-            .map(|j| (self.knots[j + 1] + self.knots[j + 2] + self.knots[j + 3]) / DEGREE as f64)
-            .collect()
+        (0..self.n_ctrl).map(|j| (self.knots[j + 1] + self.knots[j + 2] + self.knots[j + 3]) / DEGREE as f64).collect()
     }
 
     /// Control points of one joint for the paper's initial guess, "linearly varying between starting and
@@ -397,11 +359,7 @@ impl CubicBSpline {
     /// `q̇(0) = q̇(T) = 0` exactly. `B₁` and `B_{N−2}` reach two spans in, so the curve leaves the line on the
     /// first two and the last two spans only; the control points stay monotone, so it does not overshoot.
     pub fn linear_guess(&self, q0: f64, q_t: f64) -> Vec<f64> {
-        let mut c: Vec<f64> = self
-            .greville()
-            .iter()
-            .map(|&tau| q0 + (q_t - q0) * tau / self.duration)
-            .collect();
+        let mut c: Vec<f64> = self.greville().iter().map(|&tau| q0 + (q_t - q0) * tau / self.duration).collect();
         c[1] = q0;
         c[self.n_ctrl - 2] = q_t;
         c
@@ -412,11 +370,7 @@ impl CubicBSpline {
     /// control point (fewer than `N`, or spans without enough samples — Schoenberg–Whitney).
     pub fn fit_least_squares(&self, times: &[f64], values: &[f64]) -> Result<Vec<f64>> {
         if times.len() != values.len() {
-            return Err(Error::input(
-                ORIGIN,
-                "values",
-                format!("{} times but {} values", times.len(), values.len()),
-            ));
+            return Err(Error::input(ORIGIN, "values", format!("{} times but {} values", times.len(), values.len())));
         }
         if let Some(v) = values.iter().find(|v| !v.is_finite()) {
             return Err(Error::input(ORIGIN, "values", format!("sample value {v} is not finite")));
@@ -444,9 +398,7 @@ impl CubicBSpline {
                 "samples leave some control points undetermined: every span needs samples (Schoenberg–Whitney)",
             ));
         }
-        let c = svd
-            .solve(&DVector::from_column_slice(values), 0.0)
-            .map_err(|e| Error::input(ORIGIN, "times", e))?;
+        let c = svd.solve(&DVector::from_column_slice(values), 0.0).map_err(|e| Error::input(ORIGIN, "times", e))?;
         Ok(c.iter().copied().collect())
     }
 
@@ -455,10 +407,7 @@ impl CubicBSpline {
     /// reproduced exactly. Errors if `f` returns a non-finite value.
     pub fn fit(&self, f: impl Fn(f64) -> f64) -> Result<Vec<f64>> {
         let nodes = self.quadrature_nodes(ORDER)?;
-        let times: Vec<f64> = std::iter::once(0.0)
-            .chain(nodes.t.iter().copied())
-            .chain([self.duration])
-            .collect();
+        let times: Vec<f64> = std::iter::once(0.0).chain(nodes.t.iter().copied()).chain([self.duration]).collect();
         let values: Vec<f64> = times.iter().map(|&t| f(t)).collect();
         self.fit_least_squares(&times, &values)
     }
@@ -479,10 +428,7 @@ impl CubicBSpline {
             return Err(Error::input(
                 ORIGIN,
                 "vias",
-                format!(
-                    "{} via points but only {free} free control points (N − 4 with N = {n})",
-                    vias.len()
-                ),
+                format!("{} via points but only {free} free control points (N − 4 with N = {n})", vias.len()),
             ));
         }
         for &(t, v) in vias {
@@ -490,10 +436,7 @@ impl CubicBSpline {
                 return Err(Error::input(
                     ORIGIN,
                     "vias",
-                    format!(
-                        "via ({t} s, {v}) must have a finite value and a time inside (0, {} s)",
-                        self.duration
-                    ),
+                    format!("via ({t} s, {v}) must have a finite value and a time inside (0, {} s)", self.duration),
                 ));
             }
         }
@@ -522,10 +465,8 @@ impl CubicBSpline {
         let mut gram = DMatrix::zeros(free, free);
         let mut cross = DVector::zeros(free);
         for (basis, &w) in nodes.basis.iter().zip(&nodes.w) {
-            let fixed_qdd: f64 = (0..ORDER)
-                .filter(|&k| !is_free(basis.first + k))
-                .map(|k| basis.ddb[k] * c[basis.first + k])
-                .sum();
+            let fixed_qdd: f64 =
+                (0..ORDER).filter(|&k| !is_free(basis.first + k)).map(|k| basis.ddb[k] * c[basis.first + k]).sum();
             for a in (0..ORDER).filter(|&a| is_free(basis.first + a)) {
                 let row = basis.first + a - 2;
                 cross[row] += w * basis.ddb[a] * fixed_qdd;
@@ -534,13 +475,9 @@ impl CubicBSpline {
                 }
             }
         }
-        let gram = gram.cholesky().ok_or_else(|| {
-            Error::input(
-                ORIGIN,
-                "vias",
-                "acceleration energy is not positive definite (internal error)",
-            )
-        })?;
+        let gram = gram
+            .cholesky()
+            .ok_or_else(|| Error::input(ORIGIN, "vias", "acceleration energy is not positive definite (internal error)"))?;
         let unconstrained = -gram.solve(&cross);
         if vias.is_empty() {
             return Ok(unconstrained);
@@ -569,9 +506,7 @@ impl CubicBSpline {
                 "via points are not independent: times must be distinct and spread over the spans (add control points)",
             ));
         }
-        let mu = svd
-            .solve(&(r - &a * &unconstrained), 0.0)
-            .map_err(|e| Error::input(ORIGIN, "vias", e))?;
+        let mu = svd.solve(&(r - &a * &unconstrained), 0.0).map_err(|e| Error::input(ORIGIN, "vias", e))?;
         Ok(unconstrained + g_inv_at * mu)
     }
 }
@@ -608,10 +543,7 @@ mod tests {
     struct Lcg(u64);
     impl Lcg {
         fn next(&mut self) -> f64 {
-            self.0 = self
-                .0
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
+            self.0 = self.0.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
             (self.0 >> 11) as f64 / (1u64 << 52) as f64 - 1.0
         }
         fn vec(&mut self, n: usize) -> Vec<f64> {
@@ -671,10 +603,7 @@ mod tests {
                 let k = s.span(t);
                 assert!(k < s.n_spans());
                 assert!(u[k + 3] <= t, "N = {n}, t = {t}, span {k}");
-                assert!(
-                    t < u[k + 4] || (k == s.n_spans() - 1 && t == dur),
-                    "N = {n}, t = {t}, span {k}"
-                );
+                assert!(t < u[k + 4] || (k == s.n_spans() - 1 && t == dur), "N = {n}, t = {t}, span {k}");
             }
             assert_eq!(s.span(dur), n - 4);
             assert_eq!(s.span(0.0), 0);
@@ -693,10 +622,7 @@ mod tests {
             for t in sample_times(&s) {
                 let basis = s.basis(t);
                 assert!(basis.first + 4 <= n);
-                assert!(
-                    basis.b.iter().all(|&b| (-1e-15..=1.0 + 1e-15).contains(&b)),
-                    "N = {n}, t = {t}: {basis:?}"
-                );
+                assert!(basis.b.iter().all(|&b| (-1e-15..=1.0 + 1e-15).contains(&b)), "N = {n}, t = {t}: {basis:?}");
                 assert!((basis.b.iter().sum::<f64>() - 1.0).abs() < 1e-14, "N = {n}, t = {t}");
                 assert!(basis.db.iter().sum::<f64>().abs() * h < 1e-13, "N = {n}, t = {t}");
                 assert!(basis.ddb.iter().sum::<f64>().abs() * h * h < 1e-13, "N = {n}, t = {t}");
@@ -756,12 +682,7 @@ mod tests {
         for k in 0..=20 {
             let t = 2.0 * k as f64 / 20.0;
             let u = t / 2.0;
-            let bernstein = [
-                (1.0 - u).powi(3),
-                3.0 * u * (1.0 - u).powi(2),
-                3.0 * u * u * (1.0 - u),
-                u.powi(3),
-            ];
+            let bernstein = [(1.0 - u).powi(3), 3.0 * u * (1.0 - u).powi(2), 3.0 * u * u * (1.0 - u), u.powi(3)];
             let basis = s.basis(t);
             assert_eq!(basis.first, 0);
             for (j, (b, want)) in basis.b.iter().zip(bernstein).enumerate() {
@@ -795,10 +716,7 @@ mod tests {
             let (p0, v0, _) = s.eval_joint(&c, 0.0);
             let (p_t, v_t, _) = s.eval_joint(&c, dur);
             assert!((p0 - q0).abs() < 1e-14 && (p_t - q_t).abs() < 1e-14, "N = {n}");
-            assert!(
-                (v0 - qd0).abs() < 1e-12 && (v_t - qd_t).abs() < 1e-12,
-                "N = {n}: {v0} vs {qd0}, {v_t} vs {qd_t}"
-            );
+            assert!((v0 - qd0).abs() < 1e-12 && (v_t - qd_t).abs() < 1e-12, "N = {n}: {v0} vs {qd0}, {v_t} vs {qd_t}");
             // The factor itself: Ḃ₀(0) = −3/h = −Ḃ₁(0), h = T/(N − 3).
             let factor = 3.0 * (n - 3) as f64 / dur;
             let db = s.basis(0.0).db;
@@ -815,33 +733,18 @@ mod tests {
             let h = s.knot_spacing();
             let (a0, a_t) = s.end_accelerations(&c);
             let (want0, want_t) = if n == 4 {
-                (
-                    6.0 * (c[0] - 2.0 * c[1] + c[2]) / (h * h),
-                    6.0 * (c[3] - 2.0 * c[2] + c[1]) / (h * h),
-                )
+                (6.0 * (c[0] - 2.0 * c[1] + c[2]) / (h * h), 6.0 * (c[3] - 2.0 * c[2] + c[1]) / (h * h))
             } else {
-                (
-                    3.0 * (2.0 * c[0] - 3.0 * c[1] + c[2]) / (h * h),
-                    3.0 * (2.0 * c[n - 1] - 3.0 * c[n - 2] + c[n - 3]) / (h * h),
-                )
+                (3.0 * (2.0 * c[0] - 3.0 * c[1] + c[2]) / (h * h), 3.0 * (2.0 * c[n - 1] - 3.0 * c[n - 2] + c[n - 3]) / (h * h))
             };
             let tol = 1e-12 / (h * h);
-            assert!(
-                (a0 - want0).abs() < tol && (a_t - want_t).abs() < tol,
-                "N = {n}: {a0} vs {want0}, {a_t} vs {want_t}"
-            );
+            assert!((a0 - want0).abs() < tol && (a_t - want_t).abs() < tol, "N = {n}: {a0} vs {want0}, {a_t} vs {want_t}");
         }
     }
 
     #[test]
     fn cubic_polynomials_are_reproduced_exactly() {
-        let cubic = |t: f64| {
-            (
-                0.7 - 1.3 * t + 0.4 * t * t - 0.25 * t * t * t,
-                -1.3 + 0.8 * t - 0.75 * t * t,
-                0.8 - 1.5 * t,
-            )
-        };
+        let cubic = |t: f64| (0.7 - 1.3 * t + 0.4 * t * t - 0.25 * t * t * t, -1.3 + 0.8 * t - 0.75 * t * t, 0.8 - 1.5 * t);
         for (n, dur) in SIZES {
             let s = CubicBSpline::new(n, dur).unwrap();
             let c = s.fit(|t| cubic(t).0).unwrap();
@@ -874,10 +777,7 @@ mod tests {
         let ts: Vec<f64> = (0..10).map(|k| k as f64 / 9.0).collect();
         let vs = vec![0.0; 10];
         assert!(s.fit_least_squares(&ts, &vs[..9]).is_err(), "length mismatch");
-        assert!(
-            s.fit_least_squares(&ts[..5], &vs[..5]).is_err(),
-            "fewer samples than control points"
-        );
+        assert!(s.fit_least_squares(&ts[..5], &vs[..5]).is_err(), "fewer samples than control points");
         let mut bad = vs.clone();
         bad[3] = f64::NAN;
         assert!(s.fit_least_squares(&ts, &bad).is_err(), "NaN value");
@@ -919,15 +819,9 @@ mod tests {
                 nodes.t.iter().zip(&nodes.w).map(|(&t, &w)| w * f(t)).sum::<f64>()
             };
             let exact = integral(4);
-            assert!(
-                (exact - simpson).abs() < 1e-10 * simpson,
-                "N = {n}: {exact} vs Simpson {simpson}"
-            );
+            assert!((exact - simpson).abs() < 1e-10 * simpson, "N = {n}: {exact} vs Simpson {simpson}");
             assert!((integral(6) - exact).abs() < 1e-13 * exact, "N = {n}");
-            assert!(
-                (integral(3) - exact).abs() > 1e-9 * exact,
-                "N = {n}: 3 nodes should not be exact"
-            );
+            assert!((integral(3) - exact).abs() > 1e-9 * exact, "N = {n}: 3 nodes should not be exact");
         }
     }
 
@@ -1006,17 +900,10 @@ mod tests {
             plus[k] += 1e-6;
             minus[k] -= 1e-6;
             let numeric = (f(&plus) - f(&minus)) / 2e-6;
-            assert!(
-                (numeric - grad[k]).abs() < 1e-6 * (1.0 + numeric.abs()),
-                "x[{k}]: {numeric} vs {}",
-                grad[k]
-            );
+            assert!((numeric - grad[k]).abs() < 1e-6 * (1.0 + numeric.abs()), "x[{k}]: {numeric} vs {}", grad[k]);
         }
         // Local support: control points outside first..first+4 get nothing.
-        assert!(grad[..basis.first * nv]
-            .iter()
-            .chain(&grad[(basis.first + 4) * nv..])
-            .all(|&g| g == 0.0));
+        assert!(grad[..basis.first * nv].iter().chain(&grad[(basis.first + 4) * nv..]).all(|&g| g == 0.0));
     }
 
     #[test]
@@ -1043,15 +930,9 @@ mod tests {
             // Beyond two spans from either end (the support of B₁, B_{N−2}) the curve is the straight line.
             let slope = 1.5 / dur;
             let two_spans = 2.0 * s.knot_spacing();
-            for t in sample_times(&s)
-                .into_iter()
-                .filter(|&t| t >= two_spans && t <= dur - two_spans)
-            {
+            for t in sample_times(&s).into_iter().filter(|&t| t >= two_spans && t <= dur - two_spans) {
                 let (q, qd, _) = s.eval_joint(&c, t);
-                assert!(
-                    (q - (-0.4 + slope * t)).abs() < 1e-12 && (qd - slope).abs() < 1e-12,
-                    "N = {n}, t = {t}"
-                );
+                assert!((q - (-0.4 + slope * t)).abs() < 1e-12 && (qd - slope).abs() < 1e-12, "N = {n}, t = {t}");
             }
             // Monotone: an initial guess should not overshoot.
             assert!(c.windows(2).all(|p| p[0] <= p[1]));
@@ -1093,10 +974,7 @@ mod tests {
         let coarse = CubicBSpline::new(7, 2.0).unwrap(); // knots every 0.5 s
         let fine = CubicBSpline::new(11, 2.0).unwrap(); // knots every 0.25 s
         let vias = [(1.0, 2.0)];
-        let (cc, cf) = (
-            coarse.through_points(0.0, &vias, 0.5).unwrap(),
-            fine.through_points(0.0, &vias, 0.5).unwrap(),
-        );
+        let (cc, cf) = (coarse.through_points(0.0, &vias, 0.5).unwrap(), fine.through_points(0.0, &vias, 0.5).unwrap());
         for k in 0..=200 {
             let t = 2.0 * k as f64 / 200.0;
             let (a, b) = (coarse.eval_joint(&cc, t), fine.eval_joint(&cf, t));
@@ -1107,10 +985,7 @@ mod tests {
         }
         // A via off the knots cannot be reproduced exactly by the coarse basis: the test can tell.
         let off = [(0.9, 2.0)];
-        let (cc, cf) = (
-            coarse.through_points(0.0, &off, 0.5).unwrap(),
-            fine.through_points(0.0, &off, 0.5).unwrap(),
-        );
+        let (cc, cf) = (coarse.through_points(0.0, &off, 0.5).unwrap(), fine.through_points(0.0, &off, 0.5).unwrap());
         let diff = (coarse.eval_joint(&cc, 0.45).0 - fine.eval_joint(&cf, 0.45).0).abs();
         assert!(diff > 1e-6, "{diff}");
     }
@@ -1119,10 +994,7 @@ mod tests {
     fn through_points_rejects_impossible_vias() {
         let bezier = CubicBSpline::new(4, 1.0).unwrap();
         assert_eq!(bezier.through_points(0.0, &[], 1.0).unwrap(), vec![0.0, 0.0, 1.0, 1.0]);
-        assert!(
-            bezier.through_points(0.0, &[(0.5, 0.5)], 1.0).is_err(),
-            "no free control points"
-        );
+        assert!(bezier.through_points(0.0, &[(0.5, 0.5)], 1.0).is_err(), "no free control points");
         let s = CubicBSpline::new(8, 1.0).unwrap();
         for bad in [(0.0, 0.1), (1.0, 0.1), (-0.2, 0.1), (0.5, f64::NAN), (f64::NAN, 0.1)] {
             let err = s.through_points(0.0, &[bad], 1.0).unwrap_err().to_string();

@@ -25,11 +25,7 @@ impl GaussLegendre {
     /// Computes the `n`-point rule. `n = 0` is an error (a rule needs at least one node).
     pub fn new(n: usize) -> Result<Self> {
         if n == 0 {
-            return Err(Error::input(
-                "Gauss–Legendre",
-                "n",
-                "a quadrature rule needs at least one node, got 0",
-            ));
+            return Err(Error::input("Gauss–Legendre", "n", "a quadrature rule needs at least one node, got 0"));
         }
         let mut nodes = vec![0.0; n];
         let mut weights = vec![0.0; n];
@@ -61,10 +57,7 @@ impl GaussLegendre {
 
     /// The rule mapped to `[a, b]`: pairs `(t, w)` with `Σ w f(t) ≈ ∫ₐᵇ f(t) dt`.
     pub fn on_interval(&self, a: f64, b: f64) -> impl Iterator<Item = (f64, f64)> + '_ {
-        self.nodes
-            .iter()
-            .zip(&self.weights)
-            .map(move |(&x, &w)| map_to_interval(x, w, a, b))
+        self.nodes.iter().zip(&self.weights).map(move |(&x, &w)| map_to_interval(x, w, a, b))
     }
 
     /// `∫ₐᵇ f(t) dt` by this rule.
