@@ -143,3 +143,89 @@ fn energy_is_conserved_without_torque() {
         assert!(((e1 - e0) / scale).abs() < 1e-6, "{n} joints: energy drifted from {e0} to {e1}");
     }
 }
+
+/// The root reaction wrench's derivatives against central differences.
+#[test]
+fn root_wrench_derivatives_match_finite_differences() {
+    for (seed, n) in [(11u64, 1usize), (12, 7), (13, 20), (14, 40)] {
+        let model = random_tree(seed, n);
+        let mut data = Data::new(&model);
+        let (q, v, a) = state(seed, n);
+        let fext = random_fext(&model, seed);
+        rnea_derivatives(&model, &mut data, &q, &v, &a, &G, Some(&fext));
+        let analytic = [data.dW_dq.clone(), data.dW_dv.clone(), data.dW_da.clone()];
+        let h = 1e-6;
+        for (wrt, columns) in analytic.iter().enumerate() {
+            for k in 0..n {
+                let mut plus = [q.clone(), v.clone(), a.clone()];
+                let mut minus = plus.clone();
+                plus[wrt][k] += h;
+                minus[wrt][k] -= h;
+                rnea(&model, &mut data, &plus[0], &plus[1], &plus[2], &G, Some(&fext));
+                let wp = data.root_wrench.to_vec6();
+                rnea(&model, &mut data, &minus[0], &minus[1], &minus[2], &G, Some(&fext));
+                let wm = data.root_wrench.to_vec6();
+                let fd = (wp - wm) / (2.0 * h);
+                let err = (fd - columns[k].to_vec6()).amax() / fd.amax().max(1.0);
+                assert!(err < 1e-6, "{n} joints: root wrench derivative {wrt} column {k} off by {err:e}");
+            }
+        }
+    }
+}
+
+/// Jᵀλ of a world-fixed force at a body point, and its q-derivative, against central differences.
+#[test]
+fn point_force_derivatives_match_finite_differences() {
+    use mintorque::dynamics::point_force::{add_generalized_force, generalized_force_derivative, path_dofs, point_jacobian};
+    for (seed, n) in [(21u64, 1usize), (22, 6), (23, 18), (24, 40)] {
+        let model = random_tree(seed, n);
+        let mut data = Data::new(&model);
+        let (q, v, a) = state(seed, n);
+        let body = n; // the last body: a leaf or deep in the tree
+        let local = Vec3::new(0.1, -0.2, 0.3);
+        let lambda = Vec3::new(3.0, -1.0, 7.0);
+        let path = path_dofs(&model, body);
+        let point = |data: &Data| data.oMi[body].act_point(&local);
+        let gen_force = |data: &mut Data, q: &[f64]| {
+            kinematics::placements(&model, data, q);
+            let mut tau = vec![0.0; n];
+            add_generalized_force(data, &path, &point(data), &lambda, &mut tau);
+            tau
+        };
+        // Jᵀλ equals the RNEA difference with the same force given as an external force.
+        kinematics::placements(&model, &mut data, &q);
+        let p = point(&data);
+        let f_local = data.oMi[body].act_inv_force(&Force::new(p.cross(&lambda), lambda));
+        let mut fext = vec![Force::ZERO; model.bodies.len()];
+        fext[body] = f_local;
+        let t0 = rnea(&model, &mut data, &q, &v, &a, &G, None).clone();
+        let t1 = rnea(&model, &mut data, &q, &v, &a, &G, Some(&fext)).clone();
+        let jt = gen_force(&mut data, &q);
+        for k in 0..n {
+            assert!(((t0[k] - t1[k]) - jt[k]).abs() < 1e-9 * (1.0 + jt[k].abs()), "Jᵀλ differs from RNEA's f_ext");
+        }
+        // Derivatives.
+        kinematics::placements(&model, &mut data, &q);
+        let m = path.len();
+        let mut d = vec![0.0; m * m];
+        generalized_force_derivative(&data, &path, &point(&data), &lambda, &mut d);
+        let mut jac = vec![Vec3::zeros(); m];
+        point_jacobian(&data, &path, &point(&data), &mut jac);
+        let h = 1e-6;
+        for (c, &j) in path.iter().enumerate() {
+            let (mut qp, mut qm) = (q.clone(), q.clone());
+            qp[j] += h;
+            qm[j] -= h;
+            let (tp, tm) = (gen_force(&mut data, &qp), gen_force(&mut data, &qm));
+            for (r, &k) in path.iter().enumerate() {
+                let fd = (tp[k] - tm[k]) / (2.0 * h);
+                assert!((fd - d[r * m + c]).abs() < 1e-6 * (1.0 + fd.abs()), "∂(Jᵀλ)[{k}]/∂q[{j}]: {} vs {fd}", d[r * m + c]);
+            }
+            kinematics::placements(&model, &mut data, &qp);
+            let pp = point(&data);
+            kinematics::placements(&model, &mut data, &qm);
+            let pm = point(&data);
+            assert!(((pp - pm) / (2.0 * h) - jac[c]).amax() < 1e-6, "point Jacobian column {c}");
+        }
+    }
+}

@@ -54,6 +54,11 @@ pub struct Data {
     /// The joint-space inertia matrix `H(q)` (`M` in the reference data), symmetric.
     pub M: DMatrix<f64>,
     pub ddq: DVector<f64>,
+    /// Derivatives of the root reaction wrench (and of the joint force of every strict ancestor) with
+    /// respect to `q_k`, `q̇_k`, `q̈_k`, indexed by dof `k` (filled by `rnea_derivatives`).
+    pub dW_dq: Vec<Force>,
+    pub dW_dv: Vec<Force>,
+    pub dW_da: Vec<Force>,
     /// The wrench the world exerts on the root to carry the figure (world coordinates, moment about the
     /// world origin): the "root reaction" used by balance and contact constraints.
     pub root_wrench: Force,
@@ -87,6 +92,9 @@ impl Data {
             dtau_dv: DMatrix::zeros(nv, nv),
             M: DMatrix::zeros(nv, nv),
             ddq: DVector::zeros(nv),
+            dW_dq: vec![Force::ZERO; nv],
+            dW_dv: vec![Force::ZERO; nv],
+            dW_da: vec![Force::ZERO; nv],
             root_wrench: Force::ZERO,
         }
     }

@@ -14,6 +14,7 @@ pub mod bench;
 pub mod crba;
 pub mod data;
 pub mod kinematics;
+pub mod point_force;
 pub mod rnea;
 pub mod rnea_derivatives;
 

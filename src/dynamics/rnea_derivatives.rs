@@ -34,7 +34,8 @@ use crate::model::Model;
 use crate::spatial::{skew, Force, Mat3, Motion, Vec3};
 
 /// `τ`, `∂τ/∂q`, `∂τ/∂q̇` and `H` at `(q, q̇, q̈)` into `data.tau`, `data.dtau_dq`, `data.dtau_dv`,
-/// `data.M`. Also the root reaction wrench.
+/// `data.M`. Also the root reaction wrench and its derivatives (`data.dW_dq`, `dW_dv`, `dW_da`): a column
+/// `k` is the derivative of every strict ancestor's joint force, the root's included.
 pub fn rnea_derivatives(model: &Model, data: &mut Data, q: &[f64], v: &[f64], a: &[f64], gravity: &Vec3, fext: ExternalForces) {
     let nb = model.bodies.len();
     placements(model, data, q);
@@ -76,6 +77,9 @@ pub fn rnea_derivatives(model: &Model, data: &mut Data, q: &[f64], v: &[f64], a:
         let (sdot_i, a_i) = (data.Sdot[i], data.A[i]);
         let d_q = s_i.cross_force(&f_i) + y_i.mul(&a_i) + b_times(&sdot_i);
         let d_v = y_i.mul(&sdot_i) * 2.0 + b_times(&s_i);
+        data.dW_dq[i - 1] = d_q;
+        data.dW_dv[i - 1] = d_v;
+        data.dW_da[i - 1] = y_s;
         let mut j = model.joints[i].parent;
         while j > 0 {
             data.dtau_dq[(j - 1, i - 1)] = data.S[j].dot(&d_q);
