@@ -19,6 +19,9 @@
 pub mod dynamics;
 pub mod error;
 pub mod model;
+pub mod plan;
+pub mod report;
+pub mod solve;
 pub mod spatial;
 pub mod trajectory;
 

@@ -4,7 +4,10 @@
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 use mintorque::dynamics::{batch::StatesFile, bench};
+use mintorque::plan::{self, task::Task, SolverKind};
+use mintorque::report::{self, Summary};
 use mintorque::spatial::Vec3;
+use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -17,6 +20,23 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
+    /// Plan the minimum-torque motion of a task file and write the results into a directory.
+    Plan {
+        /// The task (TOML; see docs/task-file.md).
+        task: PathBuf,
+        /// Output directory (created if needed): trajectory.csv, summary.json, task.resolved.toml.
+        #[arg(long, short)]
+        out: PathBuf,
+        /// Override the task's solver.
+        #[arg(long, value_enum)]
+        solver: Option<SolverArg>,
+        /// Override the number of B-spline control points per joint.
+        #[arg(long)]
+        control_points: Option<usize>,
+        /// No progress output.
+        #[arg(long, short)]
+        quiet: bool,
+    },
     /// Inverse dynamics, its derivatives, H(q) and forward dynamics of a model at the states of a file
     /// (the reference data's JSON format), printed as JSON in the file's joint order.
     Dynamics {
@@ -34,12 +54,85 @@ enum Command {
     },
 }
 
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum SolverArg {
+    Structured,
+    AuglagBfgs,
+}
+
+/// Exit code of a plan that did not converge (its results are still written, marked as such).
+const NOT_CONVERGED: u8 = 3;
+
 fn load_model(path: &Path) -> Result<mintorque::Model> {
     Ok(mintorque::model::load_any(path)?)
 }
 
-fn run(cli: Cli) -> Result<()> {
+fn run_plan(task_path: &Path, out: &Path, solver: Option<SolverArg>, control_points: Option<usize>, quiet: bool) -> Result<bool> {
+    let mut task = Task::load(task_path)?;
+    if let Some(s) = solver {
+        task.solver = match s {
+            SolverArg::Structured => SolverKind::Structured,
+            SolverArg::AuglagBfgs => SolverKind::AuglagBfgs,
+        };
+    }
+    if let Some(n) = control_points {
+        task.spec.n_ctrl = n;
+    }
+    let spec = &task.spec;
+    let terminal = std::io::stderr().is_terminal();
+    let bar = (!quiet && terminal).then(|| {
+        let b = indicatif::ProgressBar::new_spinner();
+        b.set_style(indicatif::ProgressStyle::with_template("{spinner} {elapsed} {msg}").expect("valid template"));
+        b
+    });
+    let mut last_print = std::time::Instant::now();
+    let mut observer = |p: &mintorque::solve::Progress| {
+        let msg = format!(
+            "iteration {:>4} (outer {:>2})  objective {:.6e}  violation {:.2e}  stationarity {:.2e}",
+            p.iteration, p.outer_iteration, p.objective, p.violation, p.stationarity
+        );
+        if let Some(b) = &bar {
+            b.set_message(msg);
+            b.tick();
+        } else if !quiet && last_print.elapsed().as_secs_f64() > 1.0 {
+            eprintln!("{msg}");
+            last_print = std::time::Instant::now();
+        }
+    };
+    let planned = plan::plan(spec, task.solver, &task.settings, &mut observer)?;
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    let samples = plan::sample(spec, &planned, &report::sample_times(spec.duration, task.file.output.sample_rate))?;
+    let summary = Summary::new(spec, &planned, &samples);
+    let resolved = toml::to_string_pretty(&task.file).context("serialising the resolved task")?;
+    report::write_files(
+        out,
+        &[
+            ("trajectory.csv", report::trajectory_csv(spec, &samples).into_bytes()),
+            ("summary.json", serde_json::to_string_pretty(&summary)?.into_bytes()),
+            ("task.resolved.toml", resolved.into_bytes()),
+        ],
+    )?;
+    if !quiet {
+        print!("{}", report::summary::text_table(&summary));
+        println!("results in {}", out.display());
+    }
+    if !summary.converged {
+        eprintln!("error: the optimization did not converge: {}", summary.reason);
+        if let Some(v) = &summary.worst_violation_at_nodes {
+            eprintln!("       worst constraint: {} (scaled violation {:.2e})", v.constraint, v.value);
+        }
+    }
+    Ok(summary.converged)
+}
+
+fn run(cli: Cli) -> Result<ExitCode> {
     match cli.command {
+        Command::Plan { task, out, solver, control_points, quiet } => {
+            let converged = run_plan(&task, &out, solver, control_points, quiet)?;
+            Ok(if converged { ExitCode::SUCCESS } else { ExitCode::from(NOT_CONVERGED) })
+        }
         Command::Dynamics { model, states, gravity, bench: do_bench } => {
             let model = load_model(&model)?;
             let file = match &states {
@@ -67,14 +160,14 @@ fn run(cli: Cli) -> Result<()> {
                 }))?
             };
             println!("{out}");
-            Ok(())
+            Ok(ExitCode::SUCCESS)
         }
     }
 }
 
 fn main() -> ExitCode {
     match run(Cli::parse()) {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(code) => code,
         Err(e) => {
             eprintln!("error: {e:#}");
             ExitCode::FAILURE

@@ -1,0 +1,239 @@
+//! Planning a minimum-torque motion: a resolved [`Spec`] (from a task file or built in Rust) is transcribed
+//! onto B-splines ([`transcription`]), solved by a [`crate::solve::Solver`], and returned as a [`Plan`]:
+//! the motion at any time, with an honest account of how the solve went.
+
+pub mod spec;
+pub mod task;
+pub mod transcription;
+
+pub use spec::{Balance, Contact, ContactKind, InitialGuess, Objective, PointLoad, Spec};
+pub use transcription::{NodeValues, Transcription};
+
+use crate::error::{Error, Result};
+use crate::solve::{self, Outcome, Problem, Progress, Settings, Solver};
+use crate::trajectory::bspline::CubicBSpline;
+use std::time::Instant;
+
+/// Which solver to use.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SolverKind {
+    /// Augmented Lagrangian whose inner problems are solved by Levenberg–Marquardt on the banded
+    /// least-squares structure (default, fast).
+    Structured,
+    /// The paper's method: augmented Lagrangian (eq. 10–11) around BFGS with a Wolfe line search.
+    AuglagBfgs,
+}
+
+impl SolverKind {
+    pub fn name(&self) -> &'static str {
+        match self {
+            SolverKind::Structured => "structured (augmented Lagrangian + Levenberg–Marquardt, banded)",
+            SolverKind::AuglagBfgs => "auglag-bfgs (augmented Lagrangian + BFGS, the paper's method)",
+        }
+    }
+}
+
+/// The result of planning.
+#[derive(Clone, Debug)]
+pub struct Plan {
+    /// Joint control points, `n_ctrl × nv` row-major (rad or m).
+    pub ctrl: Vec<f64>,
+    /// Contact-force control points, `n_ctrl × n_lambda`.
+    pub lambda_ctrl: Vec<f64>,
+    /// The solver's unknowns at the end (for warm starts).
+    pub x: Vec<f64>,
+    pub outcome: Outcome,
+    pub solver: SolverKind,
+    /// `½∫τᵀWτ dt` of the initial guess (same quadrature).
+    pub initial_objective: f64,
+    pub solve_seconds: f64,
+    /// The worst scaled constraint violation on a dense grid between the nodes, and where.
+    pub worst_between_nodes: Option<(f64, String)>,
+}
+
+impl Plan {
+    pub fn converged(&self) -> bool {
+        self.outcome.converged
+    }
+}
+
+/// Checks a spec for mistakes a user can make, naming the field.
+pub fn validate(spec: &Spec) -> Result<()> {
+    let model = &spec.model;
+    let nv = model.nv();
+    let err = |field: &str, message: String| Err(Error::task("task", field, message));
+    if !(spec.duration.is_finite() && spec.duration > 0.0) {
+        return err("duration", format!("must be a positive number of seconds, got {}", spec.duration));
+    }
+    let min_ctrl = if spec.zero_end_velocity { 5 } else { 4 };
+    if spec.n_ctrl < min_ctrl {
+        return err(
+            "control_points",
+            format!(
+                "{} is too few for a cubic B-spline with fixed end postures and velocities: need at least {min_ctrl}",
+                spec.n_ctrl
+            ),
+        );
+    }
+    if spec.nodes_per_span == 0 {
+        return err("nodes_per_span", "must be at least 1".into());
+    }
+    for (name, q) in [("start", &spec.start), ("goal", &spec.goal)] {
+        if q.len() != nv {
+            return err(name, format!("has {} values, the model has {nv} joints", q.len()));
+        }
+        for (i, v) in q.iter().enumerate() {
+            let joint = &model.joints[i + 1];
+            if !v.is_finite() {
+                return err(&format!("{name}.{}", joint.name), "is not a finite number".into());
+            }
+            if spec.position_limits && (*v < joint.limits.lower - 1e-9 || *v > joint.limits.upper + 1e-9) {
+                return err(
+                    &format!("{name}.{}", joint.name),
+                    format!(
+                        "{:.3}° is outside the joint's limits [{:.3}°, {:.3}°]",
+                        v.to_degrees(),
+                        joint.limits.lower.to_degrees(),
+                        joint.limits.upper.to_degrees()
+                    ),
+                );
+            }
+        }
+    }
+    if spec.weights.len() != nv || spec.weights.iter().any(|w| !(w.is_finite() && *w >= 0.0)) {
+        return err("objective.weights", "must be one finite, non-negative weight per joint".into());
+    }
+    if !spec.gravity.iter().all(|g| g.is_finite()) {
+        return err("environment.gravity", "must be finite".into());
+    }
+    // Contacts must hold at the start and the goal, which the solver cannot move.
+    let mut data = crate::dynamics::Data::new(model);
+    for c in &spec.contacts {
+        for (name, q) in [("start", &spec.start), ("goal", &spec.goal)] {
+            crate::dynamics::kinematics::placements(model, &mut data, q);
+            let p = crate::dynamics::kinematics::frame_placement(model, &data, c.frame).translation;
+            let miss: f64 = c.directions().iter().map(|e| e.dot(&(p - c.target)).powi(2)).sum::<f64>().sqrt();
+            if miss > 1e-4 {
+                return err(
+                    &format!("constraints.contact \"{}\"", c.name),
+                    format!(
+                        "the {name} posture puts frame \"{}\" {:.1} mm from its target ({:.4}, {:.4}, {:.4}) m: the posture and the contact contradict each other",
+                        model.frames[c.frame].name,
+                        miss * 1e3,
+                        c.target.x,
+                        c.target.y,
+                        c.target.z
+                    ),
+                );
+            }
+        }
+        if let Some(mu) = c.friction {
+            if !(mu.is_finite() && mu >= 0.0) || c.push_normal.is_none() {
+                return err(&format!("constraints.contact \"{}\".friction", c.name), "needs a ground normal and μ ≥ 0".into());
+            }
+        }
+    }
+    if let Some(b) = &spec.balance {
+        if !(b.x[0] < b.x[1] && b.y[0] < b.y[1]) {
+            return err("constraints.balance", "the support rectangle must have min < max in x and y".into());
+        }
+    }
+    Ok(())
+}
+
+/// The initial guess as solver unknowns.
+pub fn initial_x(spec: &Spec, problem: &Transcription) -> Result<Vec<f64>> {
+    let nv = spec.model.nv();
+    let n = spec.n_ctrl;
+    let spline = &problem.spline;
+    let mut ctrl = vec![0.0; n * nv];
+    for i in 0..nv {
+        let column = match &spec.initial_guess {
+            InitialGuess::Linear => spline.linear_guess(spec.start[i], spec.goal[i]),
+            InitialGuess::Via(vias) => {
+                let points: Vec<(f64, f64)> = vias.iter().map(|(t, q)| (*t, q[i])).collect();
+                spline.through_points(spec.start[i], &points, spec.goal[i])?
+            }
+            InitialGuess::ControlPoints(c) => (0..n).map(|j| c[j * nv + i]).collect(),
+            InitialGuess::Samples(samples) => {
+                let times: Vec<f64> = samples.iter().map(|(t, _)| *t).collect();
+                let values: Vec<f64> = samples.iter().map(|(_, q)| q[i]).collect();
+                spline.fit_least_squares(&times, &values)?
+            }
+        };
+        for j in 0..n {
+            ctrl[j * nv + i] = column[j];
+        }
+    }
+    let lambda = vec![0.0; n * problem.layout.n_lambda];
+    Ok(problem.layout.pack(&ctrl, &lambda))
+}
+
+fn objective_at(problem: &mut Transcription, x: &[f64]) -> std::result::Result<f64, String> {
+    let dims = problem.dims();
+    let mut eval = solve::Evaluation::new(dims, &problem.jacobian_patterns()).map_err(|e| e.to_string())?;
+    problem.evaluate(x, false, &mut eval)?;
+    Ok(eval.objective())
+}
+
+/// The worst scaled violation on a grid of `per_span` evenly spaced times per knot span (ends included).
+pub fn check_between_nodes(spec: &Spec, x: &[f64], per_span: usize) -> Result<Option<(f64, String)>> {
+    let spline = CubicBSpline::new(spec.n_ctrl, spec.duration)?;
+    let count = spline.n_spans() * per_span;
+    let times: Vec<f64> = (0..=count).map(|k| spec.duration * k as f64 / count as f64).collect();
+    let nodes = spline.grid(&times)?;
+    let mut grid = Transcription::with_nodes(spec, spline, nodes);
+    let dims = grid.dims();
+    if dims.n_eq + dims.n_ineq == 0 {
+        return Ok(None);
+    }
+    let mut eval = solve::Evaluation::new(dims, &grid.jacobian_patterns())
+        .map_err(|e| Error::task("task", "transcription", e.to_string()))?;
+    grid.evaluate(x, false, &mut eval).map_err(|e| Error::task("task", "transcription", e))?;
+    let scales = grid.scales();
+    let mut worst: Option<(f64, solve::ConstraintKind, usize)> = None;
+    let mut consider = |v: f64, kind, i| {
+        if worst.is_none_or(|(w, _, _)| v > w) {
+            worst = Some((v, kind, i));
+        }
+    };
+    for (i, h) in eval.h.iter().enumerate() {
+        consider(h.abs() / scales.eq[i], solve::ConstraintKind::Equality, i);
+    }
+    for (i, g) in eval.g.iter().enumerate() {
+        consider(g.max(0.0) / scales.ineq[i], solve::ConstraintKind::Inequality, i);
+    }
+    Ok(worst.map(|(v, kind, i)| (v, grid.constraint_name(kind, i))))
+}
+
+/// Plans the motion of `spec`: validates it, builds the initial guess, solves, and checks the result
+/// between the nodes. A plan that did not converge is still returned (with `converged() == false` and
+/// the reason): the caller decides what to do with it.
+pub fn plan(spec: &Spec, solver: SolverKind, settings: &Settings, observer: &mut dyn FnMut(&Progress)) -> Result<Plan> {
+    validate(spec)?;
+    let mut problem = Transcription::new(spec)?;
+    let x0 = initial_x(spec, &problem)?;
+    let initial_objective = objective_at(&mut problem, &x0).map_err(|e| Error::task("task", "initial guess", e))?;
+    let started = Instant::now();
+    let outcome = match solver {
+        SolverKind::Structured => solve::AugLagLevenbergMarquardt::default().solve(&mut problem, &x0, settings, observer),
+        SolverKind::AuglagBfgs => solve::AugLagBfgs::default().solve(&mut problem, &x0, settings, observer),
+    };
+    let solve_seconds = started.elapsed().as_secs_f64();
+    let nv = spec.model.nv();
+    let mut ctrl = vec![0.0; spec.n_ctrl * nv];
+    let mut lambda_ctrl = vec![0.0; spec.n_ctrl * problem.layout.n_lambda];
+    problem.layout.unpack(&outcome.x, &problem.fixed_values, &mut ctrl, &mut lambda_ctrl);
+    let worst_between_nodes = check_between_nodes(spec, &outcome.x, 16)?;
+    Ok(Plan { ctrl, lambda_ctrl, x: outcome.x.clone(), outcome, solver, initial_objective, solve_seconds, worst_between_nodes })
+}
+
+/// The planned motion sampled at `times` (s).
+pub fn sample(spec: &Spec, plan: &Plan, times: &[f64]) -> Result<Vec<NodeValues>> {
+    let spline = CubicBSpline::new(spec.n_ctrl, spec.duration)?;
+    let nodes = spline.grid(times)?;
+    let mut t = Transcription::with_nodes(spec, spline, nodes);
+    t.set_x(&plan.x);
+    Ok((0..t.len()).map(|k| t.node_values(k)).collect())
+}

@@ -1,0 +1,144 @@
+//! A planning problem fully resolved: the model built, every name turned into an index, every angle in
+//! radians, every default applied. The task file (`task.rs`) produces one; Rust users can build one
+//! directly. Everything downstream (transcription, solvers, reports) reads only this.
+
+use crate::model::Model;
+use crate::spatial::Vec3;
+
+/// How a frame is held by the environment for the whole motion (a closed loop cut open and closed again
+/// by the constraint `Φ(q) = 0` of eq. 13).
+#[derive(Clone, Debug, PartialEq)]
+pub enum ContactKind {
+    /// The frame's origin stays at `target` (3 equations; reaction in any direction).
+    Point,
+    /// The frame's origin stays on the plane through `target` with unit `normal` (1 equation; reaction
+    /// along the normal only — frictionless sliding).
+    Plane { normal: Vec3 },
+    /// The frame's origin stays on the line through `target` along unit `direction` (2 equations; reaction
+    /// perpendicular to the line — a bar the hands hold).
+    Line { direction: Vec3 },
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Contact {
+    pub name: String,
+    pub frame: usize,
+    pub kind: ContactKind,
+    /// World point (m) the frame is held at / on.
+    pub target: Vec3,
+    /// For contacts with the ground: the surface's outward unit normal. The reaction must push
+    /// (`n·λ ≥ 0`).
+    pub push_normal: Option<Vec3>,
+    /// Coulomb friction coefficient of the surface (a linear friction pyramid inscribed in the cone).
+    /// Needs `push_normal`.
+    pub friction: Option<f64>,
+}
+
+impl Contact {
+    /// An orthonormal basis `E` (columns) of the constrained directions: `Φ = Eᵀ(p − target)`, and the
+    /// reaction is `λ = E λ̃`.
+    pub fn directions(&self) -> Vec<Vec3> {
+        match &self.kind {
+            ContactKind::Point => vec![Vec3::x(), Vec3::y(), Vec3::z()],
+            ContactKind::Plane { normal } => vec![*normal],
+            ContactKind::Line { direction } => {
+                let (a, b) = perpendicular_pair(direction);
+                vec![a, b]
+            }
+        }
+    }
+}
+
+/// Two unit vectors completing `d` to an orthonormal basis.
+pub fn perpendicular_pair(d: &Vec3) -> (Vec3, Vec3) {
+    let helper = if d.x.abs() < 0.9 { Vec3::x() } else { Vec3::y() };
+    let a = d.cross(&helper).normalize();
+    (a, d.cross(&a))
+}
+
+/// Balance of a figure rooted at its feet: the centre of pressure of the root's reaction wrench on the
+/// ground plane `z = ground_z` stays inside the rectangle `[x_min, x_max] × [y_min, y_max]` (world, m), and
+/// the feet stay loaded (`f_z ≥ 0`). Assumes gravity along −z.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Balance {
+    pub x: [f64; 2],
+    pub y: [f64; 2],
+    pub ground_z: f64,
+}
+
+/// A force fixed in world directions at a frame (N, N·m about the frame origin), constant in time.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PointLoad {
+    pub frame: usize,
+    pub force: Vec3,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Objective {
+    /// `½∫τᵀWτ dt` of the active torques (the paper's choice, section 5.1).
+    Torque,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum InitialGuess {
+    /// Straight lines between start and goal in joint space, with zero end velocities (paper section 6).
+    Linear,
+    /// Through via postures at given times: `(t, q)` (the paper's "parabolic" guess through a midpoint).
+    Via(Vec<(f64, Vec<f64>)>),
+    /// Control points given (warm start), `n_ctrl × nv`, row-major.
+    ControlPoints(Vec<f64>),
+    /// Samples `(t, q)` of a trajectory to fit.
+    Samples(Vec<(f64, Vec<f64>)>),
+}
+
+#[derive(Clone, Debug)]
+pub struct Spec {
+    pub model: Model,
+    /// World gravity (m/s²).
+    pub gravity: Vec3,
+    /// Duration of the motion (s).
+    pub duration: f64,
+    /// Start and goal postures in `q` order (rad or m).
+    pub start: Vec<f64>,
+    pub goal: Vec<f64>,
+    /// `q̇(0) = q̇(T) = 0` (the paper's choice; fixed exactly by the end control points).
+    pub zero_end_velocity: bool,
+    /// B-spline control points per joint, and Gauss–Legendre nodes per knot span.
+    pub n_ctrl: usize,
+    pub nodes_per_span: usize,
+    pub objective: Objective,
+    /// Per-joint weights of the objective (`W`, diagonal).
+    pub weights: Vec<f64>,
+    /// Enforce the model's position limits / effort limits at the quadrature nodes.
+    pub position_limits: bool,
+    pub torque_limits: bool,
+    pub contacts: Vec<Contact>,
+    pub balance: Option<Balance>,
+    pub loads: Vec<PointLoad>,
+    pub initial_guess: InitialGuess,
+}
+
+impl Spec {
+    /// A plain problem: no limits, no contacts, linear guess, N = 16 with 4 nodes per span.
+    pub fn new(model: Model, start: Vec<f64>, goal: Vec<f64>, duration: f64) -> Spec {
+        let nv = model.nv();
+        Spec {
+            gravity: model.gravity,
+            model,
+            duration,
+            start,
+            goal,
+            zero_end_velocity: true,
+            n_ctrl: 16,
+            nodes_per_span: 4,
+            objective: Objective::Torque,
+            weights: vec![1.0; nv],
+            position_limits: false,
+            torque_limits: false,
+            contacts: vec![],
+            balance: None,
+            loads: vec![],
+            initial_guess: InitialGuess::Linear,
+        }
+    }
+}

@@ -1,0 +1,754 @@
+//! The B-spline transcription (paper section 5.3, eq. 30–33): the motion planning problem of eq. 12–13
+//! becomes a finite problem over the control points, in the least-squares form the solvers take:
+//!
+//! ```text
+//! minimise ½ Σₖ wₖ τₐ(tₖ)ᵀ W τₐ(tₖ) ≈ ½ ∫ τₐᵀ W τₐ dt          (Gauss–Legendre nodes tₖ, weights wₖ)
+//! τₐ = H q̈ + Q(q, q̇) − Σ_c J_cᵀ λ_c − Σ Jᵀ f_load − τ_passive(q, q̇)     (eq. 12, active torque)
+//! subject to  Φ(q(tₖ)) = 0                                         (contacts / loop closure, eq. 13)
+//!             q_low ≤ q(tₖ) ≤ q_up,  |τₐ(tₖ)| ≤ τ_max               (eq. 12)
+//!             n·λ(tₖ) ≥ 0, friction pyramid, centre of pressure in the support rectangle
+//! ```
+//!
+//! Unknowns `x`, control-point-major so that every Jacobian is banded: for control point `j`, the values
+//! of the free joints (none for the four end control points when the end velocities are fixed: `c₀ = c₁ =
+//! q₀`, `c_{N−2} = c_{N−1} = q_T` make `q(0), q̇(0), q(T), q̇(T)` exact), then the control points of the
+//! contact forces `λ(t)` (cubic B-splines on the same knots, so the loads on the hands are smooth and
+//! defined at every time). Gradients follow eq. 33 from the engine's `∂τ/∂q`, `∂τ/∂q̇` and `H`, touching
+//! only the four non-zero basis functions at each node.
+
+use super::spec::Spec;
+use crate::dynamics::point_force::{add_generalized_force, generalized_force_derivative, path_dofs, point_jacobian};
+use crate::dynamics::{kinematics, rnea::rnea, rnea_derivatives::rnea_derivatives, Data};
+use crate::solve::{ConstraintKind, Dims, Evaluation, Patterns, Problem, Scales};
+use crate::spatial::{Force, Vec3};
+use crate::trajectory::bspline::{BasisAt, CubicBSpline, Nodes};
+
+/// Where each control point's unknowns sit in `x`.
+#[derive(Clone, Debug)]
+pub struct Layout {
+    pub nv: usize,
+    pub n_ctrl: usize,
+    /// Contact-force components per control point.
+    pub n_lambda: usize,
+    /// Control points whose joint values are fixed by the boundary conditions.
+    pub fixed: Vec<bool>,
+    pub block_start: Vec<usize>,
+    pub n: usize,
+}
+
+impl Layout {
+    pub fn new(nv: usize, n_ctrl: usize, n_lambda: usize, zero_end_velocity: bool) -> Layout {
+        let fixed: Vec<bool> =
+            (0..n_ctrl).map(|j| j == 0 || j + 1 == n_ctrl || (zero_end_velocity && (j == 1 || j + 2 == n_ctrl))).collect();
+        let mut block_start = Vec::with_capacity(n_ctrl);
+        let mut n = 0;
+        for &f in &fixed {
+            block_start.push(n);
+            n += if f { 0 } else { nv } + n_lambda;
+        }
+        Layout { nv, n_ctrl, n_lambda, fixed, block_start, n }
+    }
+
+    pub fn joint_var(&self, j: usize, i: usize) -> Option<usize> {
+        (!self.fixed[j]).then(|| self.block_start[j] + i)
+    }
+
+    pub fn lambda_var(&self, j: usize, m: usize) -> usize {
+        self.block_start[j] + if self.fixed[j] { 0 } else { self.nv } + m
+    }
+
+    /// Splits `x` into joint control points (`n_ctrl × nv`, fixed ones taken from `fixed_values`) and
+    /// contact-force control points (`n_ctrl × n_lambda`).
+    pub fn unpack(&self, x: &[f64], fixed_values: &[f64], ctrl: &mut [f64], lambda: &mut [f64]) {
+        for j in 0..self.n_ctrl {
+            for i in 0..self.nv {
+                ctrl[j * self.nv + i] = match self.joint_var(j, i) {
+                    Some(v) => x[v],
+                    None => fixed_values[j * self.nv + i],
+                };
+            }
+            for m in 0..self.n_lambda {
+                lambda[j * self.n_lambda + m] = x[self.lambda_var(j, m)];
+            }
+        }
+    }
+
+    /// The inverse of [`Layout::unpack`].
+    pub fn pack(&self, ctrl: &[f64], lambda: &[f64]) -> Vec<f64> {
+        let mut x = vec![0.0; self.n];
+        for j in 0..self.n_ctrl {
+            for i in 0..self.nv {
+                if let Some(v) = self.joint_var(j, i) {
+                    x[v] = ctrl[j * self.nv + i];
+                }
+            }
+            for m in 0..self.n_lambda {
+                x[self.lambda_var(j, m)] = lambda[j * self.n_lambda + m];
+            }
+        }
+        x
+    }
+}
+
+/// One inequality row at a node.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum IneqRow {
+    /// `q_i − q_up ≤ 0`.
+    UpperPosition(usize),
+    /// `q_low − q_i ≤ 0`.
+    LowerPosition(usize),
+    /// `τ_i − τ_max ≤ 0`.
+    UpperTorque(usize),
+    /// `−τ_max − τ_i ≤ 0`.
+    LowerTorque(usize),
+    /// `−n·λ_c ≤ 0` for contact `c`.
+    Push(usize),
+    /// `±t·λ_c − μ/√2 n·λ_c ≤ 0`, tangent `t` = the `k`-th of (t₁, −t₁, t₂, −t₂).
+    Friction(usize, usize),
+    /// Centre of pressure: 0 `x ≤ x_max`, 1 `x ≥ x_min`, 2 `y ≤ y_max`, 3 `y ≥ y_min`, 4 `f_z ≥ 0`.
+    Balance(usize),
+}
+
+/// Per-contact data fixed for the whole solve.
+struct ContactInfo {
+    path: Vec<usize>,
+    directions: Vec<Vec3>,
+    /// Offset of this contact's components in a control point's λ block.
+    offset: usize,
+    tangents: (Vec3, Vec3),
+}
+
+pub struct Transcription<'s> {
+    pub spec: &'s Spec,
+    pub spline: CubicBSpline,
+    pub nodes: Nodes,
+    pub layout: Layout,
+    /// Joint control points fixed by the boundary conditions (`n_ctrl × nv`; free entries unused).
+    pub fixed_values: Vec<f64>,
+    pub ineq_rows: Vec<IneqRow>,
+    contacts: Vec<ContactInfo>,
+    load_paths: Vec<Vec<usize>>,
+    n_eq_node: usize,
+    sqrt_weights: Vec<f64>,
+    limits_low: Vec<f64>,
+    limits_up: Vec<f64>,
+    effort: Vec<f64>,
+    total_weight: f64,
+    // scratch, allocated once
+    data: Data,
+    ctrl: Vec<f64>,
+    lam_ctrl: Vec<f64>,
+    work: NodeWork,
+}
+
+/// Per-node values and derivatives with respect to the node's `q`, `q̇`, `q̈` and `λ̃`.
+struct NodeWork {
+    q: Vec<f64>,
+    qd: Vec<f64>,
+    qdd: Vec<f64>,
+    lambda: Vec<f64>,
+    tau: Vec<f64>,
+    /// Row-major `nv × nv`.
+    dq: Vec<f64>,
+    dv: Vec<f64>,
+    da: Vec<f64>,
+    /// Row-major `nv × n_lambda`.
+    dl: Vec<f64>,
+    /// Root reaction wrench and its derivatives (6 per column).
+    w: Force,
+    w_dq: Vec<Force>,
+    w_dv: Vec<Force>,
+    w_da: Vec<Force>,
+    w_dl: Vec<Force>,
+    /// Contact points (world) and point Jacobians along their paths.
+    points: Vec<Vec3>,
+    jac: Vec<Vec<Vec3>>,
+    scratch: Vec<f64>,
+    row: Vec<f64>,
+}
+
+impl<'s> Transcription<'s> {
+    /// The transcription on the spec's quadrature nodes.
+    pub fn new(spec: &'s Spec) -> crate::Result<Self> {
+        let spline = CubicBSpline::new(spec.n_ctrl, spec.duration)?;
+        let nodes = spline.quadrature_nodes(spec.nodes_per_span)?;
+        Ok(Self::with_nodes(spec, spline, nodes))
+    }
+
+    /// The same problem evaluated at other nodes (a dense grid to check constraints between nodes).
+    pub fn with_nodes(spec: &'s Spec, spline: CubicBSpline, nodes: Nodes) -> Self {
+        let model = &spec.model;
+        let nv = model.nv();
+        let mut contacts = Vec::new();
+        let mut offset = 0;
+        for c in &spec.contacts {
+            let directions = c.directions();
+            let normal = c.push_normal.unwrap_or(Vec3::z());
+            contacts.push(ContactInfo {
+                path: path_dofs(model, model.frames[c.frame].body),
+                offset,
+                tangents: super::spec::perpendicular_pair(&normal),
+                directions: directions.clone(),
+            });
+            offset += directions.len();
+        }
+        let n_lambda = offset;
+        let layout = Layout::new(nv, spec.n_ctrl, n_lambda, spec.zero_end_velocity);
+        let mut fixed_values = vec![0.0; spec.n_ctrl * nv];
+        for i in 0..nv {
+            let (qd0, qdt) = (0.0, 0.0);
+            let (head, tail) = spline.end_control_points(spec.start[i], qd0, spec.goal[i], qdt);
+            let n = spec.n_ctrl;
+            fixed_values[i] = head[0];
+            fixed_values[(n - 1) * nv + i] = tail[1];
+            if spec.zero_end_velocity {
+                fixed_values[nv + i] = head[1];
+                fixed_values[(n - 2) * nv + i] = tail[0];
+            }
+        }
+        let (limits_low, limits_up): (Vec<f64>, Vec<f64>) = model.position_limits();
+        let effort: Vec<f64> = model.joints[1..].iter().map(|j| j.limits.effort).collect();
+        let mut ineq_rows = Vec::new();
+        if spec.position_limits {
+            for i in 0..nv {
+                if limits_up[i].is_finite() {
+                    ineq_rows.push(IneqRow::UpperPosition(i));
+                }
+                if limits_low[i].is_finite() {
+                    ineq_rows.push(IneqRow::LowerPosition(i));
+                }
+            }
+        }
+        if spec.torque_limits {
+            for i in 0..nv {
+                if effort[i].is_finite() {
+                    ineq_rows.push(IneqRow::UpperTorque(i));
+                    ineq_rows.push(IneqRow::LowerTorque(i));
+                }
+            }
+        }
+        for (c, contact) in spec.contacts.iter().enumerate() {
+            if contact.push_normal.is_some() {
+                ineq_rows.push(IneqRow::Push(c));
+                if contact.friction.is_some() {
+                    for k in 0..4 {
+                        ineq_rows.push(IneqRow::Friction(c, k));
+                    }
+                }
+            }
+        }
+        if spec.balance.is_some() {
+            for k in 0..5 {
+                ineq_rows.push(IneqRow::Balance(k));
+            }
+        }
+        let load_paths = spec.loads.iter().map(|l| path_dofs(model, model.frames[l.frame].body)).collect();
+        let total_weight = model.total_mass() * spec.gravity.norm().max(9.81);
+        let work = NodeWork {
+            q: vec![0.0; nv],
+            qd: vec![0.0; nv],
+            qdd: vec![0.0; nv],
+            lambda: vec![0.0; n_lambda],
+            tau: vec![0.0; nv],
+            dq: vec![0.0; nv * nv],
+            dv: vec![0.0; nv * nv],
+            da: vec![0.0; nv * nv],
+            dl: vec![0.0; nv * n_lambda],
+            w: Force::ZERO,
+            w_dq: vec![Force::ZERO; nv],
+            w_dv: vec![Force::ZERO; nv],
+            w_da: vec![Force::ZERO; nv],
+            w_dl: vec![Force::ZERO; n_lambda],
+            points: vec![Vec3::zeros(); spec.contacts.len()],
+            jac: contacts.iter().map(|c: &ContactInfo| vec![Vec3::zeros(); c.path.len()]).collect(),
+            scratch: vec![0.0; nv * nv],
+            row: vec![0.0; 3 * nv + n_lambda],
+        };
+        Transcription {
+            n_eq_node: n_lambda,
+            sqrt_weights: spec.weights.iter().map(|w| w.sqrt()).collect(),
+            data: Data::new(model),
+            ctrl: vec![0.0; spec.n_ctrl * nv],
+            lam_ctrl: vec![0.0; spec.n_ctrl * n_lambda],
+            spec,
+            spline,
+            nodes,
+            layout,
+            fixed_values,
+            ineq_rows,
+            contacts,
+            load_paths,
+            limits_low,
+            limits_up,
+            effort,
+            total_weight,
+            work,
+        }
+    }
+
+    pub fn nv(&self) -> usize {
+        self.layout.nv
+    }
+
+    fn n_nodes(&self) -> usize {
+        self.nodes.t.len()
+    }
+
+    /// Columns touched at a node by the motion (joint values of the four active control points) and by
+    /// the contact forces (their λ control points): `(motion, lambda)`.
+    fn node_columns(&self, basis: &BasisAt) -> (Vec<usize>, Vec<usize>) {
+        let l = &self.layout;
+        let mut motion = Vec::new();
+        let mut lambda = Vec::new();
+        for j in basis.first..basis.first + 4 {
+            motion.extend((0..l.nv).filter_map(|i| l.joint_var(j, i)));
+            lambda.extend((0..l.n_lambda).map(|m| l.lambda_var(j, m)));
+        }
+        (motion, lambda)
+    }
+
+    /// Evaluates everything at one node into `self.work` (derivatives when `jac`).
+    fn eval_node(&mut self, k: usize, jac: bool) {
+        let spec = self.spec;
+        let model = &spec.model;
+        let nv = self.layout.nv;
+        let nl = self.layout.n_lambda;
+        let basis = self.nodes.basis[k];
+        let w = &mut self.work;
+        basis.eval(&self.ctrl, nv, &mut w.q, &mut w.qd, &mut w.qdd);
+        for m in 0..nl {
+            w.lambda[m] = (0..4).map(|a| basis.b[a] * self.lam_ctrl[(basis.first + a) * nl + m]).sum();
+        }
+        let data = &mut self.data;
+        if jac {
+            rnea_derivatives(model, data, &w.q, &w.qd, &w.qdd, &spec.gravity, None);
+            for r in 0..nv {
+                for c in 0..nv {
+                    w.dq[r * nv + c] = data.dtau_dq[(r, c)];
+                    w.dv[r * nv + c] = data.dtau_dv[(r, c)];
+                    w.da[r * nv + c] = data.M[(r, c)];
+                }
+            }
+            w.w_dq.copy_from_slice(&data.dW_dq);
+            w.w_dv.copy_from_slice(&data.dW_dv);
+            w.w_da.copy_from_slice(&data.dW_da);
+            w.dl.iter_mut().for_each(|x| *x = 0.0);
+        } else {
+            rnea(model, data, &w.q, &w.qd, &w.qdd, &spec.gravity, None);
+        }
+        w.tau.copy_from_slice(data.tau.as_slice());
+        w.w = data.root_wrench;
+        // Passive joint torques: the muscles supply τ − τ_passive.
+        for i in 0..nv {
+            let p = &model.joints[i + 1].passive;
+            w.tau[i] -= p.torque(w.q[i], w.qd[i]);
+            if jac {
+                w.dq[i * nv + i] += p.stiffness;
+                w.dv[i * nv + i] += p.damping;
+            }
+        }
+        // Loads and contact forces: world-fixed forces at body points, τ −= Jᵀf, W −= [p×f; f].
+        let world_force = |w: &mut NodeWork, data: &Data, path: &[usize], p: &Vec3, f: &Vec3, jac: bool| {
+            add_generalized_force(data, path, p, &(-f), &mut w.tau);
+            w.w -= Force::new(p.cross(f), *f);
+            if jac {
+                let m = path.len();
+                generalized_force_derivative(data, path, p, f, &mut w.scratch[..m * m]);
+                for (r, &kr) in path.iter().enumerate() {
+                    for (c, &kc) in path.iter().enumerate() {
+                        w.dq[kr * nv + kc] -= w.scratch[r * m + c];
+                    }
+                }
+                for &kc in path {
+                    let s = &data.S[kc + 1];
+                    let p_dot = s.w.cross(p) + s.v;
+                    w.w_dq[kc] -= Force::new(p_dot.cross(f), Vec3::zeros());
+                }
+            }
+        };
+        for (l, load) in spec.loads.iter().enumerate() {
+            let p = kinematics::frame_placement(model, data, load.frame).translation;
+            world_force(w, data, &self.load_paths[l], &p, &load.force, jac);
+        }
+        for (c, contact) in spec.contacts.iter().enumerate() {
+            let info = &self.contacts[c];
+            let p = kinematics::frame_placement(model, data, contact.frame).translation;
+            w.points[c] = p;
+            let mut f = Vec3::zeros();
+            for (m, e) in info.directions.iter().enumerate() {
+                f += e * w.lambda[info.offset + m];
+            }
+            world_force(w, data, &info.path, &p, &f, jac);
+            if jac {
+                point_jacobian(data, &info.path, &p, &mut w.jac[c]);
+                for (m, e) in info.directions.iter().enumerate() {
+                    // ∂τ/∂λ̃ = −Jᵀe, ∂W/∂λ̃ = −[p×e; e]
+                    let fe = Force::new(p.cross(e), *e);
+                    for &kk in &info.path {
+                        w.dl[kk * nl + info.offset + m] = -data.S[kk + 1].dot(&fe);
+                    }
+                    w.w_dl[info.offset + m] = -fe;
+                }
+            }
+        }
+    }
+
+    /// Writes a row's values over the pattern `motion ++ lambda` from its derivatives with respect to the
+    /// node's `q`, `q̇`, `q̈` (each `nv`) and `λ̃` (`n_lambda`), by the chain rule of eq. 33, scaled by `s`.
+    fn chain_rule(
+        layout: &Layout,
+        basis: &BasisAt,
+        s: f64,
+        d_q: &[f64],
+        d_v: &[f64],
+        d_a: &[f64],
+        d_l: Option<&[f64]>,
+        out: &mut [f64],
+    ) {
+        let mut pos = 0;
+        for a in 0..4 {
+            if layout.fixed[basis.first + a] {
+                continue;
+            }
+            let (b, db, ddb) = (basis.b[a] * s, basis.db[a] * s, basis.ddb[a] * s);
+            for i in 0..layout.nv {
+                out[pos] = d_q[i] * b + d_v[i] * db + d_a[i] * ddb;
+                pos += 1;
+            }
+        }
+        if let Some(d_l) = d_l {
+            for a in 0..4 {
+                let b = basis.b[a] * s;
+                for m in 0..layout.n_lambda {
+                    out[pos] = d_l[m] * b;
+                    pos += 1;
+                }
+            }
+        }
+    }
+}
+
+/// The coefficients `c` of a balance row `c · W ≤ 0` in the root reaction wrench `W = [n; f]` (about the
+/// world origin), for the centre of pressure on the plane `z = z₀`: with `n' = n − z₀ ẑ × f`, the centre
+/// of pressure is `(−n'_y/f_z, n'_x/f_z)`; multiplying through by `f_z ≥ 0` keeps the rows linear.
+fn balance_coefficients(row: usize, b: &super::spec::Balance) -> [f64; 6] {
+    let z0 = b.ground_z;
+    // [n_x, n_y, n_z, f_x, f_y, f_z]
+    match row {
+        0 => [0.0, -1.0, 0.0, z0, 0.0, -b.x[1]],
+        1 => [0.0, 1.0, 0.0, -z0, 0.0, b.x[0]],
+        2 => [1.0, 0.0, 0.0, 0.0, z0, -b.y[1]],
+        3 => [-1.0, 0.0, 0.0, 0.0, -z0, b.y[0]],
+        _ => [0.0, 0.0, 0.0, 0.0, 0.0, -1.0],
+    }
+}
+
+fn dot6(c: &[f64; 6], f: &Force) -> f64 {
+    c[0] * f.n.x + c[1] * f.n.y + c[2] * f.n.z + c[3] * f.f.x + c[4] * f.f.y + c[5] * f.f.z
+}
+
+impl Transcription<'_> {
+    /// The contact-force columns of contact `c` at a node.
+    fn contact_columns(&self, basis: &BasisAt, c: usize) -> Vec<usize> {
+        let info = &self.contacts[c];
+        let mut cols = Vec::new();
+        for j in basis.first..basis.first + 4 {
+            cols.extend((0..info.directions.len()).map(|m| self.layout.lambda_var(j, info.offset + m)));
+        }
+        cols
+    }
+
+    fn n_ineq_node(&self) -> usize {
+        self.ineq_rows.len()
+    }
+
+    /// Which node and which row within it an inequality index is.
+    pub fn decode_ineq(&self, index: usize) -> (usize, IneqRow) {
+        let per = self.n_ineq_node().max(1);
+        (index / per, self.ineq_rows[index % per])
+    }
+
+    /// Starts a solve-independent evaluation: the control points of `x`.
+    pub fn set_x(&mut self, x: &[f64]) {
+        self.layout.unpack(x, &self.fixed_values, &mut self.ctrl, &mut self.lam_ctrl);
+    }
+}
+
+impl Problem for Transcription<'_> {
+    fn dims(&self) -> Dims {
+        let nn = self.n_nodes();
+        Dims { n: self.layout.n, n_res: nn * self.layout.nv, n_eq: nn * self.n_eq_node, n_ineq: nn * self.n_ineq_node() }
+    }
+
+    fn jacobian_patterns(&self) -> Patterns {
+        let nv = self.layout.nv;
+        let mut p = Patterns::default();
+        for basis in &self.nodes.basis {
+            let (motion, lambda) = self.node_columns(basis);
+            let both: Vec<usize> = motion.iter().chain(lambda.iter()).copied().collect();
+            for _ in 0..nv {
+                p.r.push(both.clone());
+            }
+            for _ in 0..self.n_eq_node {
+                p.h.push(motion.clone());
+            }
+            for row in &self.ineq_rows {
+                p.g.push(match *row {
+                    IneqRow::UpperPosition(i) | IneqRow::LowerPosition(i) => {
+                        (basis.first..basis.first + 4).filter_map(|j| self.layout.joint_var(j, i)).collect()
+                    }
+                    IneqRow::UpperTorque(_) | IneqRow::LowerTorque(_) | IneqRow::Balance(_) => both.clone(),
+                    IneqRow::Push(c) | IneqRow::Friction(c, _) => self.contact_columns(basis, c),
+                });
+            }
+        }
+        p
+    }
+
+    fn evaluate(&mut self, x: &[f64], want_jac: bool, out: &mut Evaluation) -> Result<(), String> {
+        self.set_x(x);
+        let nv = self.layout.nv;
+        let nl = self.layout.n_lambda;
+        let n_ineq = self.n_ineq_node();
+        for k in 0..self.n_nodes() {
+            self.eval_node(k, want_jac);
+            let basis = self.nodes.basis[k];
+            let sw = self.nodes.w[k].sqrt();
+            let w = &mut self.work;
+            // Objective residuals: √wₖ √W_ℓ τ_ℓ.
+            for l in 0..nv {
+                let s = sw * self.sqrt_weights[l];
+                out.r[k * nv + l] = s * w.tau[l];
+                if want_jac {
+                    let dl = (nl > 0).then(|| &w.dl[l * nl..(l + 1) * nl]);
+                    let vals = out.jr.row_values_mut(k * nv + l);
+                    Self::chain_rule(
+                        &self.layout,
+                        &basis,
+                        s,
+                        &w.dq[l * nv..(l + 1) * nv],
+                        &w.dv[l * nv..(l + 1) * nv],
+                        &w.da[l * nv..(l + 1) * nv],
+                        dl,
+                        vals,
+                    );
+                }
+            }
+            // Contacts: Φ = Eᵀ(p − target).
+            for (c, contact) in self.spec.contacts.iter().enumerate() {
+                let info = &self.contacts[c];
+                for (m, e) in info.directions.iter().enumerate() {
+                    let row = k * self.n_eq_node + info.offset + m;
+                    out.h[row] = e.dot(&(w.points[c] - contact.target));
+                    if want_jac {
+                        let (d_q, rest) = w.row.split_at_mut(nv);
+                        let zeros = &mut rest[..nv];
+                        d_q.iter_mut().for_each(|x| *x = 0.0);
+                        zeros.iter_mut().for_each(|x| *x = 0.0);
+                        for (col, &dof) in info.path.iter().enumerate() {
+                            d_q[dof] = e.dot(&w.jac[c][col]);
+                        }
+                        Self::chain_rule(&self.layout, &basis, 1.0, d_q, zeros, zeros, None, out.jh.row_values_mut(row));
+                    }
+                }
+            }
+            // Inequalities.
+            for (r, row) in self.ineq_rows.iter().enumerate() {
+                let gi = k * n_ineq + r;
+                match *row {
+                    IneqRow::UpperPosition(i) | IneqRow::LowerPosition(i) => {
+                        let upper = matches!(row, IneqRow::UpperPosition(_));
+                        let sign = if upper { 1.0 } else { -1.0 };
+                        out.g[gi] = if upper { w.q[i] - self.limits_up[i] } else { self.limits_low[i] - w.q[i] };
+                        if want_jac {
+                            let vals = out.jg.row_values_mut(gi);
+                            let mut pos = 0;
+                            for a in 0..4 {
+                                if !self.layout.fixed[basis.first + a] {
+                                    vals[pos] = sign * basis.b[a];
+                                    pos += 1;
+                                }
+                            }
+                        }
+                    }
+                    IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) => {
+                        let upper = matches!(row, IneqRow::UpperTorque(_));
+                        let sign = if upper { 1.0 } else { -1.0 };
+                        out.g[gi] = sign * w.tau[i] - self.effort[i];
+                        if want_jac {
+                            let dl = (nl > 0).then(|| &w.dl[i * nl..(i + 1) * nl]);
+                            Self::chain_rule(
+                                &self.layout,
+                                &basis,
+                                sign,
+                                &w.dq[i * nv..(i + 1) * nv],
+                                &w.dv[i * nv..(i + 1) * nv],
+                                &w.da[i * nv..(i + 1) * nv],
+                                dl,
+                                out.jg.row_values_mut(gi),
+                            );
+                        }
+                    }
+                    IneqRow::Push(c) | IneqRow::Friction(c, _) => {
+                        let info = &self.contacts[c];
+                        let contact = &self.spec.contacts[c];
+                        let n = contact.push_normal.unwrap_or(Vec3::z());
+                        // The row as a linear functional of λ (world): coefficient vector `a`.
+                        let a = match *row {
+                            IneqRow::Push(_) => -n,
+                            IneqRow::Friction(_, t) => {
+                                let mu = contact.friction.unwrap_or(0.0) / std::f64::consts::SQRT_2;
+                                let tangent = match t {
+                                    0 => info.tangents.0,
+                                    1 => -info.tangents.0,
+                                    2 => info.tangents.1,
+                                    _ => -info.tangents.1,
+                                };
+                                tangent - n * mu
+                            }
+                            _ => unreachable!(),
+                        };
+                        let coef: Vec<f64> = info.directions.iter().map(|e| a.dot(e)).collect();
+                        out.g[gi] = coef.iter().enumerate().map(|(m, c)| c * w.lambda[info.offset + m]).sum();
+                        if want_jac {
+                            let vals = out.jg.row_values_mut(gi);
+                            let mut pos = 0;
+                            for a in 0..4 {
+                                for c in &coef {
+                                    vals[pos] = c * basis.b[a];
+                                    pos += 1;
+                                }
+                            }
+                        }
+                    }
+                    IneqRow::Balance(b) => {
+                        let balance = self.spec.balance.as_ref().expect("balance rows only with a balance constraint");
+                        let c = balance_coefficients(b, balance);
+                        out.g[gi] = dot6(&c, &w.w);
+                        if want_jac {
+                            let (d_q, rest) = w.row.split_at_mut(nv);
+                            let (d_v, rest) = rest.split_at_mut(nv);
+                            let (d_a, d_l) = rest.split_at_mut(nv);
+                            for i in 0..nv {
+                                d_q[i] = dot6(&c, &w.w_dq[i]);
+                                d_v[i] = dot6(&c, &w.w_dv[i]);
+                                d_a[i] = dot6(&c, &w.w_da[i]);
+                            }
+                            for m in 0..nl {
+                                d_l[m] = dot6(&c, &w.w_dl[m]);
+                            }
+                            let d_l = (nl > 0).then_some(&d_l[..nl]);
+                            Self::chain_rule(&self.layout, &basis, 1.0, d_q, d_v, d_a, d_l, out.jg.row_values_mut(gi));
+                        }
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn scales(&self) -> Scales {
+        let nn = self.n_nodes();
+        let per_node: Vec<f64> = self
+            .ineq_rows
+            .iter()
+            .map(|row| match *row {
+                IneqRow::UpperPosition(i) | IneqRow::LowerPosition(i) => {
+                    let range = self.limits_up[i] - self.limits_low[i];
+                    if range.is_finite() && range > 0.0 {
+                        range
+                    } else {
+                        1.0
+                    }
+                }
+                IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) => self.effort[i].max(1e-9),
+                IneqRow::Push(_) | IneqRow::Friction(..) => self.total_weight.max(1.0),
+                IneqRow::Balance(4) => self.total_weight.max(1.0),
+                IneqRow::Balance(_) => (0.1 * self.total_weight).max(1.0),
+            })
+            .collect();
+        Scales { eq: vec![1.0; nn * self.n_eq_node], ineq: (0..nn).flat_map(|_| per_node.iter().copied()).collect() }
+    }
+
+    fn constraint_name(&self, kind: ConstraintKind, index: usize) -> String {
+        let joint = |i: usize| self.spec.model.joints[i + 1].name.clone();
+        match kind {
+            ConstraintKind::Equality => {
+                let per = self.n_eq_node.max(1);
+                let (k, m) = (index / per, index % per);
+                let c = self.contacts.iter().rposition(|c| c.offset <= m).unwrap_or(0);
+                format!(
+                    "contact \"{}\" (component {}) at t = {:.3} s",
+                    self.spec.contacts[c].name,
+                    m - self.contacts[c].offset,
+                    self.nodes.t[k]
+                )
+            }
+            ConstraintKind::Inequality => {
+                let (k, row) = self.decode_ineq(index);
+                let t = self.nodes.t[k];
+                let contact = |c: usize| self.spec.contacts[c].name.clone();
+                let what = match row {
+                    IneqRow::UpperPosition(i) => format!("upper position limit of joint \"{}\"", joint(i)),
+                    IneqRow::LowerPosition(i) => format!("lower position limit of joint \"{}\"", joint(i)),
+                    IneqRow::UpperTorque(i) => format!("torque limit (+) of joint \"{}\"", joint(i)),
+                    IneqRow::LowerTorque(i) => format!("torque limit (−) of joint \"{}\"", joint(i)),
+                    IneqRow::Push(c) => format!("push-only contact force of \"{}\"", contact(c)),
+                    IneqRow::Friction(c, _) => format!("friction cone of \"{}\"", contact(c)),
+                    IneqRow::Balance(4) => "balance: feet stay loaded".to_string(),
+                    IneqRow::Balance(_) => "balance: centre of pressure inside the support".to_string(),
+                };
+                format!("{what} at t = {t:.3} s")
+            }
+        }
+    }
+}
+
+/// Everything known about the motion at one time.
+#[derive(Clone, Debug, Default)]
+pub struct NodeValues {
+    pub t: f64,
+    pub q: Vec<f64>,
+    pub qd: Vec<f64>,
+    pub qdd: Vec<f64>,
+    /// Active (muscle) torques: total minus passive, contact and load contributions.
+    pub tau: Vec<f64>,
+    /// The contact forces the environment applies, world axes (N), one per contact.
+    pub contact_forces: Vec<Vec3>,
+    /// The contact points (world, m).
+    pub contact_points: Vec<Vec3>,
+    /// The wrench the ground applies to the root (world axes, moment about the world origin).
+    pub root_wrench: Force,
+}
+
+impl Transcription<'_> {
+    /// The values at node `k` for the control points last given to [`Transcription::set_x`].
+    pub fn node_values(&mut self, k: usize) -> NodeValues {
+        self.eval_node(k, false);
+        let w = &self.work;
+        let contact_forces = self
+            .contacts
+            .iter()
+            .map(|info| info.directions.iter().enumerate().fold(Vec3::zeros(), |f, (m, e)| f + e * w.lambda[info.offset + m]))
+            .collect();
+        NodeValues {
+            t: self.nodes.t[k],
+            q: w.q.clone(),
+            qd: w.qd.clone(),
+            qdd: w.qdd.clone(),
+            tau: w.tau.clone(),
+            contact_forces,
+            contact_points: w.points.clone(),
+            root_wrench: w.w,
+        }
+    }
+
+    /// Number of nodes.
+    pub fn len(&self) -> usize {
+        self.n_nodes()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.n_nodes() == 0
+    }
+}

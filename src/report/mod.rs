@@ -1,0 +1,83 @@
+//! What a plan leaves behind: `trajectory.csv`, `summary.json` and the fully resolved task, written whole
+//! or not at all (every file goes to a temporary directory first and is renamed into place only when all
+//! of them were written).
+
+pub mod summary;
+
+pub use summary::Summary;
+
+use crate::error::{Error, Result};
+use crate::model::JointKind;
+use crate::plan::{NodeValues, Spec};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// Sample times `0, 1/rate, …, T` (the end always included).
+pub fn sample_times(duration: f64, rate: f64) -> Vec<f64> {
+    let n = (duration * rate + 1e-9).floor() as usize;
+    let mut times: Vec<f64> = (0..=n).map(|k| k as f64 / rate).filter(|t| *t <= duration).collect();
+    if duration - times.last().copied().unwrap_or(0.0) > 1e-9 {
+        times.push(duration);
+    }
+    times
+}
+
+/// Column units of a joint: (position, velocity, acceleration, effort) suffixes and the factor from SI.
+fn units(kind: JointKind) -> ([&'static str; 4], f64) {
+    match kind {
+        JointKind::Prismatic => (["q_m", "qd_m_s", "qdd_m_s2", "tau_N"], 1.0),
+        _ => (["q_deg", "qd_deg_s", "qdd_deg_s2", "tau_Nm"], 180.0 / std::f64::consts::PI),
+    }
+}
+
+/// The trajectory as CSV: `time_s`, then per joint its angle, velocity, acceleration (degrees for
+/// revolutes, metres for prismatic joints) and active torque, then per contact the force on the figure
+/// (N, world axes).
+pub fn trajectory_csv(spec: &Spec, samples: &[NodeValues]) -> String {
+    let model = &spec.model;
+    let mut out = String::from("time_s");
+    for j in &model.joints[1..] {
+        for u in units(j.kind).0 {
+            let _ = write!(out, ",{}.{u}", j.name);
+        }
+    }
+    for c in &spec.contacts {
+        for axis in ["fx_N", "fy_N", "fz_N"] {
+            let _ = write!(out, ",{}.{axis}", c.name);
+        }
+    }
+    out.push('\n');
+    for s in samples {
+        let _ = write!(out, "{:.6}", s.t);
+        for (i, j) in model.joints[1..].iter().enumerate() {
+            let k = units(j.kind).1;
+            let _ = write!(out, ",{:.9},{:.9},{:.9},{:.9}", s.q[i] * k, s.qd[i] * k, s.qdd[i] * k, s.tau[i]);
+        }
+        for f in &s.contact_forces {
+            let _ = write!(out, ",{:.9},{:.9},{:.9}", f.x, f.y, f.z);
+        }
+        out.push('\n');
+    }
+    out
+}
+
+/// Writes `files` (name, contents) into `dir` whole or not at all.
+pub fn write_files(dir: &Path, files: &[(&str, Vec<u8>)]) -> Result<()> {
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    let staging: PathBuf = dir.join(format!(".mintorque-staging-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&staging);
+    std::fs::create_dir(&staging).map_err(|e| Error::io(&staging, e))?;
+    let result = (|| {
+        for (name, bytes) in files {
+            let p = staging.join(name);
+            std::fs::write(&p, bytes).map_err(|e| Error::io(&p, e))?;
+        }
+        for (name, _) in files {
+            let (from, to) = (staging.join(name), dir.join(name));
+            std::fs::rename(&from, &to).map_err(|e| Error::io(&to, e))?;
+        }
+        Ok(())
+    })();
+    let _ = std::fs::remove_dir_all(&staging);
+    result
+}

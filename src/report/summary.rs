@@ -1,0 +1,180 @@
+//! `summary.json`: how the solve went and what the motion asks of each joint.
+
+use crate::plan::{NodeValues, Plan, Spec};
+use serde::Serialize;
+
+#[derive(Serialize, Debug, Clone)]
+pub struct Summary {
+    pub converged: bool,
+    /// Why the solver stopped.
+    pub reason: String,
+    /// `½∫τᵀWτ dt` of the active torques (N²·m²·s).
+    pub objective: f64,
+    /// The same for the initial guess.
+    pub initial_guess_objective: f64,
+    pub solver: String,
+    pub iterations: usize,
+    pub outer_iterations: usize,
+    pub evaluations: usize,
+    pub solve_seconds: f64,
+    pub stationarity: f64,
+    pub control_points: usize,
+    pub quadrature: Quadrature,
+    pub duration_s: f64,
+    pub gravity_m_s2: [f64; 3],
+    /// Worst scaled constraint violation at the quadrature nodes, and which constraint.
+    pub worst_violation_at_nodes: Option<Violation>,
+    /// The same on a dense grid between the nodes.
+    pub worst_violation_between_nodes: Option<Violation>,
+    pub joints: Vec<JointSummary>,
+    pub contacts: Vec<ContactSummary>,
+}
+
+#[derive(Serialize, Debug, Clone)]
+pub struct Quadrature {
+    pub rule: &'static str,
+    pub nodes_per_span: usize,
+    pub nodes: usize,
+}
+
+#[derive(Serialize, Debug, Clone)]
+pub struct Violation {
+    /// Scaled: radians over the joint's range, torque over its limit, metres for contacts, …
+    pub value: f64,
+    pub constraint: String,
+}
+
+#[derive(Serialize, Debug, Clone)]
+pub struct JointSummary {
+    pub name: String,
+    /// Peak |active torque| (N·m, N for prismatic joints) and when it occurs (s).
+    pub peak_abs_torque: f64,
+    pub peak_time_s: f64,
+    /// The joint's effort limit, if any.
+    pub torque_limit: Option<f64>,
+}
+
+#[derive(Serialize, Debug, Clone)]
+pub struct ContactSummary {
+    pub name: String,
+    /// Peak |force| on the figure (N) and the least force along the ground normal (N; negative = a pull).
+    pub peak_force_n: f64,
+    pub min_normal_force_n: Option<f64>,
+    /// Largest distance of the frame from its target over the samples (m).
+    pub max_drift_m: f64,
+}
+
+impl Summary {
+    pub fn new(spec: &Spec, plan: &Plan, samples: &[NodeValues]) -> Summary {
+        let model = &spec.model;
+        let joints = model.joints[1..]
+            .iter()
+            .enumerate()
+            .map(|(i, j)| {
+                let (t, peak) =
+                    samples.iter().map(|s| (s.t, s.tau[i].abs())).fold((0.0, 0.0), |a, b| if b.1 > a.1 { b } else { a });
+                JointSummary {
+                    name: j.name.clone(),
+                    peak_abs_torque: peak,
+                    peak_time_s: t,
+                    torque_limit: j.limits.effort.is_finite().then_some(j.limits.effort),
+                }
+            })
+            .collect();
+        let contacts = spec
+            .contacts
+            .iter()
+            .enumerate()
+            .map(|(c, contact)| {
+                let peak = samples.iter().map(|s| s.contact_forces[c].norm()).fold(0.0, f64::max);
+                let min_normal = contact
+                    .push_normal
+                    .map(|n| samples.iter().map(|s| n.dot(&s.contact_forces[c])).fold(f64::INFINITY, f64::min));
+                let drift = samples
+                    .iter()
+                    .map(|s| {
+                        contact
+                            .directions()
+                            .iter()
+                            .map(|e| e.dot(&(s.contact_points[c] - contact.target)).powi(2))
+                            .sum::<f64>()
+                            .sqrt()
+                    })
+                    .fold(0.0, f64::max);
+                ContactSummary {
+                    name: contact.name.clone(),
+                    peak_force_n: peak,
+                    min_normal_force_n: min_normal,
+                    max_drift_m: drift,
+                }
+            })
+            .collect();
+        let o = &plan.outcome;
+        Summary {
+            converged: o.converged,
+            reason: o.reason.to_string(),
+            objective: o.objective,
+            initial_guess_objective: plan.initial_objective,
+            solver: plan.solver.name().to_string(),
+            iterations: o.iterations,
+            outer_iterations: o.outer_iterations,
+            evaluations: o.evaluations,
+            solve_seconds: plan.solve_seconds,
+            stationarity: o.stationarity,
+            control_points: spec.n_ctrl,
+            quadrature: Quadrature {
+                rule: "Gauss–Legendre",
+                nodes_per_span: spec.nodes_per_span,
+                nodes: spec.nodes_per_span * (spec.n_ctrl - 3),
+            },
+            duration_s: spec.duration,
+            gravity_m_s2: [spec.gravity.x, spec.gravity.y, spec.gravity.z],
+            worst_violation_at_nodes: o
+                .worst_constraint
+                .as_ref()
+                .map(|c| Violation { value: o.worst_violation, constraint: c.name.clone() }),
+            worst_violation_between_nodes: plan
+                .worst_between_nodes
+                .as_ref()
+                .map(|(v, n)| Violation { value: *v, constraint: n.clone() }),
+            joints,
+            contacts,
+        }
+    }
+}
+
+/// A short text table for the end of `mintorque plan`.
+pub fn text_table(s: &Summary) -> String {
+    use std::fmt::Write as _;
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "{} after {} iterations in {:.3} s ({}): effort ½∫τᵀWτ dt = {:.6e} (initial guess {:.6e})",
+        if s.converged { "converged" } else { "NOT converged" },
+        s.iterations,
+        s.solve_seconds,
+        s.solver,
+        s.objective,
+        s.initial_guess_objective
+    );
+    let width = s.joints.iter().map(|j| j.name.len()).max().unwrap_or(5).max(5);
+    let _ = writeln!(out, "{:width$}  {:>12}  {:>8}  {:>10}", "joint", "peak |τ|", "at (s)", "limit");
+    for j in &s.joints {
+        let limit = j.torque_limit.map(|l| format!("{l:.1}")).unwrap_or_else(|| "-".into());
+        let _ = writeln!(out, "{:width$}  {:>12.3}  {:>8.3}  {:>10}", j.name, j.peak_abs_torque, j.peak_time_s, limit);
+    }
+    for c in &s.contacts {
+        let _ = writeln!(
+            out,
+            "contact {}: peak force {:.1} N, least normal force {}, drift {:.3} mm",
+            c.name,
+            c.peak_force_n,
+            c.min_normal_force_n.map(|f| format!("{f:.1} N")).unwrap_or_else(|| "-".into()),
+            c.max_drift_m * 1e3
+        );
+    }
+    if let Some(v) = &s.worst_violation_between_nodes {
+        let _ = writeln!(out, "worst constraint between nodes: {} (scaled {:.2e})", v.constraint, v.value);
+    }
+    out
+}

@@ -1,0 +1,121 @@
+//! The transcription's Jacobians — objective residuals, contact equalities, every kind of inequality —
+//! against central finite differences, on random trees with every feature switched on.
+
+mod common;
+
+use common::{random_tree, Rng};
+use mintorque::model::{Frame, JointLimits, Passive};
+use mintorque::plan::{Balance, Contact, ContactKind, PointLoad, Spec, Transcription};
+use mintorque::solve::{Evaluation, Problem};
+use mintorque::spatial::{Transform, Vec3};
+
+fn random_spec(seed: u64, n: usize, zero_end_velocity: bool) -> Spec {
+    let mut model = random_tree(seed, n);
+    let mut rng = Rng(seed ^ 77);
+    for j in model.joints[1..].iter_mut() {
+        j.limits = JointLimits { lower: -1.0, upper: 1.2, velocity: 10.0, effort: 50.0 };
+        j.passive = Passive { stiffness: rng.uniform(0.0, 3.0), rest: rng.uniform(-0.5, 0.5), damping: rng.uniform(0.0, 1.0) };
+    }
+    let hand = model.bodies.len() - 1;
+    let mid = model.bodies.len() / 2;
+    model.frames.push(Frame {
+        name: "hand".into(),
+        body: hand,
+        placement: Transform::from_translation(Vec3::new(0.1, 0.2, -0.3)),
+    });
+    model.frames.push(Frame {
+        name: "grip".into(),
+        body: mid,
+        placement: Transform::from_translation(Vec3::new(-0.2, 0.0, 0.1)),
+    });
+    let (hand_f, grip_f) = (model.frames.len() - 2, model.frames.len() - 1);
+    let start = rng.vec(n, -0.8, 0.8);
+    let goal = rng.vec(n, -0.8, 0.8);
+    let mut spec = Spec::new(model, start, goal, 1.3);
+    spec.n_ctrl = 7;
+    spec.nodes_per_span = 3;
+    spec.zero_end_velocity = zero_end_velocity;
+    spec.weights = rng.vec(n, 0.5, 2.0);
+    spec.position_limits = true;
+    spec.torque_limits = true;
+    spec.contacts = vec![
+        Contact {
+            name: "hand".into(),
+            frame: hand_f,
+            kind: ContactKind::Point,
+            target: Vec3::new(0.3, 0.1, -0.5),
+            push_normal: Some(Vec3::new(0.0, 0.0, 1.0)),
+            friction: Some(0.7),
+        },
+        Contact {
+            name: "grip".into(),
+            frame: grip_f,
+            kind: ContactKind::Line { direction: Vec3::new(0.0, 1.0, 0.0) },
+            target: Vec3::zeros(),
+            push_normal: None,
+            friction: None,
+        },
+        Contact {
+            name: "palm".into(),
+            frame: hand_f,
+            kind: ContactKind::Plane { normal: Vec3::new(0.0, 0.6, 0.8) },
+            target: Vec3::zeros(),
+            push_normal: Some(Vec3::new(0.0, 0.6, 0.8)),
+            friction: None,
+        },
+    ];
+    spec.balance = Some(Balance { x: [-0.1, 0.2], y: [-0.15, 0.15], ground_z: -0.05 });
+    spec.loads = vec![PointLoad { frame: grip_f, force: Vec3::new(3.0, -2.0, -20.0) }];
+    spec.gravity = Vec3::new(0.0, 0.0, -9.81);
+    spec
+}
+
+#[test]
+fn jacobians_match_finite_differences() {
+    for (seed, n, zev) in [(1u64, 1usize, true), (2, 4, true), (3, 9, false), (4, 15, true)] {
+        let spec = random_spec(seed, n, zev);
+        let mut problem = Transcription::new(&spec).unwrap();
+        let dims = problem.dims();
+        let patterns = problem.jacobian_patterns();
+        let mut eval = Evaluation::new(dims, &patterns).unwrap();
+        let mut rng = Rng(seed ^ 99);
+        let x: Vec<f64> = rng.vec(dims.n, -1.0, 1.0).iter().map(|v| v * 0.8).collect();
+        problem.evaluate(&x, true, &mut eval).unwrap();
+        let analytic = eval.clone();
+        let (mut plus, mut minus) = (eval.clone(), eval.clone());
+        let h = 1e-6;
+        let mut worst = 0.0f64;
+        for col in 0..dims.n {
+            let (mut xp, mut xm) = (x.clone(), x.clone());
+            xp[col] += h;
+            xm[col] -= h;
+            problem.evaluate(&xp, false, &mut plus).unwrap();
+            problem.evaluate(&xm, false, &mut minus).unwrap();
+            for (name, jac, p, m) in [
+                ("r", &analytic.jr, &plus.r, &minus.r),
+                ("h", &analytic.jh, &plus.h, &minus.h),
+                ("g", &analytic.jg, &plus.g, &minus.g),
+            ] {
+                for row in 0..p.len() {
+                    let fd = (p[row] - m[row]) / (2.0 * h);
+                    let an = jac.get(row, col);
+                    let err = (fd - an).abs() / (1.0 + fd.abs());
+                    worst = worst.max(err);
+                    assert!(
+                        err < 1e-5,
+                        "seed {seed}, {n} joints: ∂{name}[{row}]/∂x[{col}] = {an} analytic, {fd} by differences ({})",
+                        match name {
+                            "h" => problem.constraint_name(mintorque::solve::ConstraintKind::Equality, row),
+                            "g" => problem.constraint_name(mintorque::solve::ConstraintKind::Inequality, row),
+                            _ => format!("residual {row}"),
+                        }
+                    );
+                }
+            }
+        }
+        println!(
+            "seed {seed}: {} unknowns, {} residuals, {} equalities, {} inequalities, worst relative error {worst:.2e}",
+            dims.n, dims.n_res, dims.n_eq, dims.n_ineq
+        );
+    }
+}
