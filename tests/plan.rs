@@ -108,3 +108,21 @@ fn solvers_agree_on_the_double_pendulum() {
     let dx = a.ctrl.iter().zip(&b.ctrl).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
     assert!(dx < 1e-4, "control points differ by {dx} rad");
 }
+
+/// `simulate` integrates the planned torques: the pendulum's plan (torque ≈ 0) is its own free swing.
+#[test]
+fn simulating_a_plan_reproduces_it() {
+    let m = model("pendulum.urdf");
+    let spec = Spec::new(m, vec![-70f64.to_radians()], vec![70f64.to_radians()], 0.6052);
+    let planned = plan::plan(&spec, SolverKind::Structured, &Settings::default(), &mut |_| {}).unwrap();
+    let sim = plan::simulate::simulate(&spec, &planned, 2000).unwrap();
+    println!("pendulum drift {:.4}°", sim.worst_drift.to_degrees());
+    assert!(sim.worst_drift.to_degrees() < 0.1, "drift {:.4}°", sim.worst_drift.to_degrees());
+    // A double pendulum is chaotic-ish, but over 1.5 s a converged plan stays close.
+    let m = model("double_pendulum.urdf");
+    let spec = Spec::new(m, vec![0.0, 0.0], vec![90f64.to_radians(), 0.0], 1.5);
+    let planned = plan::plan(&spec, SolverKind::Structured, &Settings::default(), &mut |_| {}).unwrap();
+    let sim = plan::simulate::simulate(&spec, &planned, 3000).unwrap();
+    println!("double pendulum drift {:.4}°", sim.worst_drift.to_degrees());
+    assert!(sim.worst_drift.to_degrees() < 1.0, "drift {:.4}°", sim.worst_drift.to_degrees());
+}
