@@ -113,6 +113,32 @@ pub enum Shape {
     },
 }
 
+impl Shape {
+    /// This shape (given in the child frame of `x`) in the parent frame of `x`.
+    pub fn transformed(&self, x: &Transform) -> Shape {
+        match self {
+            Shape::Box { origin, size } => Shape::Box {
+                origin: x.compose(origin),
+                size: *size,
+            },
+            Shape::Cylinder { origin, radius, length } => Shape::Cylinder {
+                origin: x.compose(origin),
+                radius: *radius,
+                length: *length,
+            },
+            Shape::Capsule { a, b, radius } => Shape::Capsule {
+                a: x.act_point(a),
+                b: x.act_point(b),
+                radius: *radius,
+            },
+            Shape::Sphere { center, radius } => Shape::Sphere {
+                center: x.act_point(center),
+                radius: *radius,
+            },
+        }
+    }
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct Body {
     /// The link's name (for merged links, the name of the link that carries the joint).
