@@ -9,10 +9,31 @@
 //! a chain of revolutes joined by massless bodies, each revolute remembering its anatomical `group`.
 //! Closed loops are cut open here and closed again by constraints in the planner.
 
+pub mod figure;
 pub mod urdf;
 pub mod validate;
 
+use crate::error::{Error, Result};
 use crate::spatial::{Inertia, Transform, Vec3};
+use std::path::Path;
+
+/// Reads a model file of either format, chosen by extension: `.urdf` or `.xml` for URDF, `.toml` for a
+/// figure file (`docs/figure-file.md`).
+pub fn load_any(path: &Path) -> Result<Model> {
+    let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("urdf" | "xml") => urdf::load(path),
+        Some("toml") => figure::load(path),
+        other => Err(Error::model(
+            path.display().to_string(),
+            "file name",
+            format!(
+                "cannot tell the model format from the extension {}: use .urdf or .xml for URDF, .toml for a figure file",
+                other.map_or("(none)".to_string(), |e| format!(".{e}"))
+            ),
+        )),
+    }
+}
 
 /// The motion a joint allows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
