@@ -264,14 +264,16 @@ pub fn rpy_to_matrix(rpy: &Vec3) -> Mat3 {
 }
 
 /// The inverse of [`rpy_to_matrix`] (for URDF export), with `pitch ∈ [-π/2, π/2]`.
+///
+/// Well conditioned everywhere, gimbal lock included: pitch comes from `atan2` (not `asin`, whose error
+/// grows like `1/cos(pitch)`), and roll is solved from `Rz(yaw)ᵀ R = Ry(pitch) Rx(roll)` with the yaw
+/// actually chosen, so that even when yaw is poorly determined (pitch ≈ ±π/2) the matrix is rebuilt exactly.
 pub fn matrix_to_rpy(r: &Mat3) -> Vec3 {
-    let pitch = (-r[(2, 0)]).clamp(-1.0, 1.0).asin();
-    if pitch.cos().abs() > 1e-9 {
-        Vec3::new(r[(2, 1)].atan2(r[(2, 2)]), pitch, r[(1, 0)].atan2(r[(0, 0)]))
-    } else {
-        // Gimbal lock: only roll ± yaw is determined; put it all in yaw.
-        Vec3::new(0.0, pitch, (-r[(0, 1)]).atan2(r[(1, 1)]))
-    }
+    let yaw = r[(1, 0)].atan2(r[(0, 0)]);
+    let (sy, cy) = yaw.sin_cos();
+    let pitch = (-r[(2, 0)]).atan2(cy * r[(0, 0)] + sy * r[(1, 0)]);
+    let roll = (sy * r[(0, 2)] - cy * r[(1, 2)]).atan2(cy * r[(1, 1)] - sy * r[(0, 1)]);
+    Vec3::new(roll, pitch, yaw)
 }
 
 /// Rotation by `angle` about the unit `axis` (Rodrigues; the matrix exponential `e^{Ŝ q}` of eq. 17 for a
@@ -292,6 +294,18 @@ pub fn axis_angle(axis: &Vec3, angle: f64) -> Mat3 {
         t * y * z + s * x,
         t * z * z + c,
     )
+}
+
+/// A rotation taking the z axis to the unit vector `a` (cylinders are drawn along their local z). When `a`
+/// is `-z`, the half turn is about x.
+pub fn rotation_from_z(a: &Vec3) -> Mat3 {
+    let z = Vec3::z();
+    let c = z.cross(a);
+    let s = c.norm();
+    if s < 1e-12 {
+        return if a.z > 0.0 { Mat3::identity() } else { axis_angle(&Vec3::x(), std::f64::consts::PI) };
+    }
+    axis_angle(&(c / s), s.atan2(z.dot(a)))
 }
 
 /// The rigid-body inertia of one link in its own frame: mass, centre of mass and the rotational inertia
@@ -505,6 +519,11 @@ mod tests {
         let r = rpy_to_matrix(&Vec3::new(0.3, -0.7, 1.1));
         let rpy = matrix_to_rpy(&r);
         assert!((rpy_to_matrix(&rpy) - r).norm() < 1e-12);
+        // At and next to gimbal lock (ur5's pitch is 1.570796325, 1.8e-9 short of π/2).
+        for pitch in [std::f64::consts::FRAC_PI_2, -std::f64::consts::FRAC_PI_2, 1.570796325, -1.570796325] {
+            let r = rpy_to_matrix(&Vec3::new(0.3, pitch, -1.1)) * rpy_to_matrix(&Vec3::new(0.0, 0.0, 3.0));
+            assert!((rpy_to_matrix(&matrix_to_rpy(&r)) - r).norm() < 1e-15, "pitch {pitch}");
+        }
         let a = axis_angle(&Vec3::new(0.0, 0.0, 1.0), 0.4);
         assert!((a - rpy_to_matrix(&Vec3::new(0.0, 0.0, 0.4))).norm() < 1e-15);
     }

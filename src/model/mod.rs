@@ -9,10 +9,32 @@
 //! a chain of revolutes joined by massless bodies, each revolute remembering its anatomical `group`.
 //! Closed loops are cut open here and closed again by constraints in the planner.
 
+pub mod figure;
 pub mod urdf;
+pub mod urdf_export;
 pub mod validate;
 
+use crate::error::{Error, Result};
 use crate::spatial::{Inertia, Transform, Vec3};
+use std::path::Path;
+
+/// Reads a model file of either format, chosen by extension: `.urdf` or `.xml` for URDF, `.toml` for a
+/// figure file (`docs/figure-file.md`).
+pub fn load_any(path: &Path) -> Result<Model> {
+    let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("urdf" | "xml") => urdf::load(path),
+        Some("toml") => figure::load(path),
+        other => Err(Error::model(
+            path.display().to_string(),
+            "file name",
+            format!(
+                "cannot tell the model format from the extension {}: use .urdf or .xml for URDF, .toml for a figure file",
+                other.map_or("(none)".to_string(), |e| format!(".{e}"))
+            ),
+        )),
+    }
+}
 
 /// The motion a joint allows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -106,6 +128,20 @@ pub enum Shape {
         center: Vec3,
         radius: f64,
     },
+}
+
+impl Shape {
+    /// This shape (given in the child frame of `x`) in the parent frame of `x`.
+    pub fn transformed(&self, x: &Transform) -> Shape {
+        match self {
+            Shape::Box { origin, size } => Shape::Box { origin: x.compose(origin), size: *size },
+            Shape::Cylinder { origin, radius, length } => {
+                Shape::Cylinder { origin: x.compose(origin), radius: *radius, length: *length }
+            }
+            Shape::Capsule { a, b, radius } => Shape::Capsule { a: x.act_point(a), b: x.act_point(b), radius: *radius },
+            Shape::Sphere { center, radius } => Shape::Sphere { center: x.act_point(center), radius: *radius },
+        }
+    }
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -252,17 +288,5 @@ impl Model {
     /// Lower and upper position limits as vectors.
     pub fn position_limits(&self) -> (Vec<f64>, Vec<f64>) {
         self.joints[1..].iter().map(|j| (j.limits.lower, j.limits.upper)).unzip()
-    }
-}
-
-/// Loads a model file by its extension: `.urdf`/`.xml` as URDF, `.toml` as a figure file.
-pub fn load_any(path: &std::path::Path) -> crate::Result<Model> {
-    match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
-        Some("urdf") | Some("xml") => urdf::load(path),
-        _ => Err(crate::Error::model(
-            path.display().to_string(),
-            "file name",
-            "unknown model file type: expected .urdf or .xml (URDF) or .toml (figure file)",
-        )),
     }
 }

@@ -1,11 +1,13 @@
 //! URDF import (revolute, continuous, prismatic and fixed joints; `<inertial>` with its `<origin rpy>`;
-//! box/cylinder/sphere visuals kept for drawing, meshes ignored). URDF is SI: metres, kilograms, radians.
+//! box/cylinder/sphere visuals kept for drawing, meshes ignored; a joint spring from the non-standard
+//! `<dynamics spring_stiffness spring_reference>`). URDF is SI: metres, kilograms, radians.
 //!
 //! The root link (the one link that is no joint's child) is welded to the world. Fixed joints are merged
 //! away: a link reached through fixed joints adds its mass to the moving body it is welded to and becomes
 //! a named frame of that body. Bodies are numbered depth-first in document order; every file format maps
 //! joints by name, so the order is ours to choose.
 
+use super::validate::Culprit;
 use super::{Body, Frame, Joint, JointKind, JointLimits, Model, Passive, Shape};
 use crate::error::{Error, Result};
 use crate::spatial::{Inertia, Mat3, Transform, Vec3};
@@ -89,6 +91,8 @@ pub fn parse(text: &str, origin: &str) -> Result<Model> {
     }
     let root = roots[0];
     let mut model = Model::new(robot.attribute("name").unwrap_or("robot"), links[root].name.clone());
+    // The line that declared each model body, joint and frame, for validation errors.
+    let mut lines = Lines { body: vec![links[root].line], joint: vec![links[root].line], frame: vec![links[root].line] };
     model.bodies[0].inertia = links[root].inertia;
     model.bodies[0].shapes = links[root].shapes.clone();
     // Depth-first from the root: (link, body it is welded to, link frame in that body's frame).
@@ -110,8 +114,9 @@ pub fn parse(text: &str, origin: &str) -> Result<Model> {
                 UrdfKind::Fixed => {
                     let merged = model.bodies[body].inertia.merged(&l.inertia.transformed(&placement));
                     model.bodies[body].inertia = merged;
-                    model.bodies[body].shapes.extend(l.shapes.iter().map(|s| transform_shape(s, &placement)));
+                    model.bodies[body].shapes.extend(l.shapes.iter().map(|s| s.transformed(&placement)));
                     model.frames.push(Frame { name: l.name.clone(), body, placement });
+                    lines.frame.push(l.line);
                     stack.push((child, body, placement));
                 }
                 UrdfKind::Moving(kind) => {
@@ -122,9 +127,12 @@ pub fn parse(text: &str, origin: &str) -> Result<Model> {
                         placement,
                         axis: j.axis,
                         limits: j.limits,
-                        passive: Passive { stiffness: 0.0, rest: 0.0, damping: j.damping },
+                        passive: j.passive,
                         group: None,
                     };
+                    lines.body.push(l.line);
+                    lines.joint.push(j.line);
+                    lines.frame.push(l.line);
                     let b = model.add_body(joint, Body { name: l.name.clone(), inertia: l.inertia, shapes: l.shapes.clone() });
                     stack.push((child, b, Transform::IDENTITY));
                 }
@@ -134,23 +142,34 @@ pub fn parse(text: &str, origin: &str) -> Result<Model> {
     if let Some(l) = visited.iter().position(|v| !v) {
         return Err(Error::model(origin, format!("link \"{}\"", links[l].name), "is not connected to the root (a cycle)"));
     }
-    model.validate(origin)?;
+    model.check().map_err(|p| match lines.of(p.culprit) {
+        Some(line) => cx.err_at(line, &p.element, p.message),
+        None => Error::model(origin, p.element, p.message),
+    })?;
     Ok(model)
 }
 
-fn transform_shape(s: &Shape, x: &Transform) -> Shape {
-    match s {
-        Shape::Box { origin, size } => Shape::Box { origin: x.compose(origin), size: *size },
-        Shape::Cylinder { origin, radius, length } => {
-            Shape::Cylinder { origin: x.compose(origin), radius: *radius, length: *length }
+/// Source lines of the model's bodies, joints and frames, by index.
+struct Lines {
+    body: Vec<u32>,
+    joint: Vec<u32>,
+    frame: Vec<u32>,
+}
+
+impl Lines {
+    fn of(&self, culprit: Culprit) -> Option<u32> {
+        match culprit {
+            Culprit::Body(i) => self.body.get(i).copied(),
+            Culprit::Joint(i) => self.joint.get(i).copied(),
+            Culprit::Frame(i) => self.frame.get(i).copied(),
+            Culprit::Model => None,
         }
-        Shape::Capsule { a, b, radius } => Shape::Capsule { a: x.act_point(a), b: x.act_point(b), radius: *radius },
-        Shape::Sphere { center, radius } => Shape::Sphere { center: x.act_point(center), radius: *radius },
     }
 }
 
 struct UrdfLink {
     name: String,
+    line: u32,
     inertia: Inertia,
     shapes: Vec<Shape>,
 }
@@ -169,7 +188,7 @@ struct UrdfJoint {
     origin: Transform,
     axis: Vec3,
     limits: JointLimits,
-    damping: f64,
+    passive: Passive,
 }
 
 struct Cx<'a, 'i> {
@@ -279,7 +298,7 @@ impl Cx<'_, '_> {
                 }
             }
         }
-        Ok(UrdfLink { name, inertia, shapes })
+        Ok(UrdfLink { name, line: self.line(node), inertia, shapes })
     }
 
     fn joint(&self, node: Node) -> Result<UrdfJoint> {
@@ -325,22 +344,18 @@ impl Cx<'_, '_> {
                 limits.lower = self.optional_number(l, "lower", &e, f64::NEG_INFINITY)?;
                 limits.upper = self.optional_number(l, "upper", &e, f64::INFINITY)?;
             }
-            if limits.lower > limits.upper {
-                return Err(self.err(l, &e, format!("lower {} is above upper {}", limits.lower, limits.upper)));
-            }
-            if limits.effort < 0.0 || limits.velocity < 0.0 {
-                return Err(self.err(l, &e, "effort and velocity must be ≥ 0".into()));
-            }
         }
-        let mut damping = 0.0;
+        let mut passive = Passive::default();
         if let Some(d) = self.child(node, "dynamics") {
             let e = format!("{what} <dynamics>");
-            damping = self.optional_number(d, "damping", &e, 0.0)?;
-            if damping < 0.0 {
-                return Err(self.err(d, &e, format!("damping must be ≥ 0, got {damping}")));
-            }
+            passive.damping = self.optional_number(d, "damping", &e, 0.0)?;
+            // Signs and limits are checked with the rest of the model, by validate.
+            // Not standard URDF (SDF's names; URDF tools ignore them): the passive spring of the figure
+            // file, so that an exported figure reads back whole.
+            passive.stiffness = self.optional_number(d, "spring_stiffness", &e, 0.0)?;
+            passive.rest = self.optional_number(d, "spring_reference", &e, 0.0)?;
         }
-        Ok(UrdfJoint { name, line: self.line(node), kind, parent, child, origin, axis, limits, damping })
+        Ok(UrdfJoint { name, line: self.line(node), kind, parent, child, origin, axis, limits, passive })
     }
 }
 

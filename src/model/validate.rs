@@ -1,68 +1,75 @@
 //! Checks that a built model is a well-formed tree of physically possible bodies. Every loader
-//! (URDF, figure file, built-in figures) calls [`Model::validate`] before handing a model out.
+//! (URDF, figure file, built-in figures) calls [`Model::validate`] (or [`Model::check`], to point at the line
+//! that declared the culprit) before handing a model out. The per-item checks are public so that a loader
+//! can run the same check on a value as it reads it, naming the exact field, without duplicating the rule.
 
-use super::{JointKind, Model};
+use super::{JointKind, Model, Shape};
 use crate::error::{Error, Result};
-use crate::spatial::Inertia;
+use crate::spatial::{Inertia, Mat3, Transform, Vec3};
 use std::collections::HashSet;
+
+/// What a problem found by [`Model::check`] is about.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Culprit {
+    /// The model as a whole (gravity, bookkeeping).
+    Model,
+    /// `joints[i]`.
+    Joint(usize),
+    /// `bodies[i]`.
+    Body(usize),
+    /// `frames[i]`.
+    Frame(usize),
+}
+
+/// A validation failure: what it is about, the element to name (`joint "elbow"`) and what is wrong.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Problem {
+    pub culprit: Culprit,
+    pub element: String,
+    pub message: String,
+}
 
 impl Model {
     /// `origin` names the file or built-in the model came from, for the error message.
     pub fn validate(&self, origin: &str) -> Result<()> {
-        let err = |element: String, message: String| Err(Error::model(origin, element, message));
+        self.check().map_err(|p| Error::model(origin, p.element, p.message))
+    }
+
+    /// The first problem found, if any; [`Model::validate`] without the file name, for loaders that map the
+    /// culprit back to a line.
+    pub fn check(&self) -> std::result::Result<(), Problem> {
+        let problem = |culprit: Culprit, element: String, message: String| Err(Problem { culprit, element, message });
         if self.joints.len() != self.bodies.len() {
-            return err("model".into(), "joints and bodies differ in number".into());
+            return problem(Culprit::Model, "model".into(), "joints and bodies differ in number".into());
         }
         let mut names = HashSet::new();
         for (i, j) in self.joints.iter().enumerate().skip(1) {
             let element = format!("joint \"{}\"", j.name);
             if !names.insert(j.name.as_str()) {
-                return err(element, "duplicate joint name".into());
+                return problem(Culprit::Joint(i), element, "duplicate joint name".into());
             }
-            if j.kind == JointKind::Root {
-                return err(element, "only joint 0 may be the root".into());
-            }
-            if j.parent >= i {
-                return err(element, format!("its parent body {} does not come before it (a cycle or a broken tree)", j.parent));
-            }
-            let n = j.axis.norm();
-            if !n.is_finite() || (n - 1.0).abs() > 1e-9 {
-                return err(element, format!("axis must be a unit vector, got {:?}", j.axis.as_slice()));
-            }
-            let p = &j.placement;
-            if !p.rotation.iter().chain(p.translation.iter()).all(|x| x.is_finite()) {
-                return err(element, "origin is not finite (NaN or infinity)".into());
-            }
-            if (p.rotation.transpose() * p.rotation - crate::spatial::Mat3::identity()).norm() > 1e-9 {
-                return err(element, "origin rotation is not a rotation matrix".into());
-            }
-            let l = &j.limits;
-            if l.lower.is_nan() || l.upper.is_nan() || l.lower > l.upper {
-                return err(element, format!("limits must satisfy lower ≤ upper, got [{}, {}]", l.lower, l.upper));
-            }
-            if l.velocity.is_nan() || l.velocity < 0.0 || l.effort.is_nan() || l.effort < 0.0 {
-                return err(element, "velocity and effort limits must be ≥ 0".into());
-            }
-            let s = &j.passive;
-            if !(s.stiffness.is_finite() && s.rest.is_finite() && s.damping.is_finite()) || s.stiffness < 0.0 || s.damping < 0.0 {
-                return err(element, "spring stiffness and damping must be finite and ≥ 0".into());
-            }
+            check_joint(self, i).or_else(|m| problem(Culprit::Joint(i), element, m))?;
         }
         let mut body_names = HashSet::new();
-        for b in &self.bodies {
+        for (i, b) in self.bodies.iter().enumerate() {
             if !body_names.insert(b.name.as_str()) {
-                return err(format!("link \"{}\"", b.name), "duplicate link name".into());
+                return problem(Culprit::Body(i), format!("link \"{}\"", b.name), "duplicate link name".into());
             }
-            check_inertia(&b.inertia).or_else(|m| err(format!("link \"{}\" inertia", b.name), m))?;
+            check_inertia(&b.inertia).or_else(|m| problem(Culprit::Body(i), format!("link \"{}\" inertia", b.name), m))?;
+            for s in &b.shapes {
+                check_shape(s).or_else(|m| problem(Culprit::Body(i), format!("link \"{}\" shape", b.name), m))?;
+            }
         }
         let mut frame_names = HashSet::new();
-        for f in &self.frames {
+        for (i, f) in self.frames.iter().enumerate() {
+            let element = format!("frame \"{}\"", f.name);
             if !frame_names.insert(f.name.as_str()) {
-                return err(format!("frame \"{}\"", f.name), "duplicate frame name".into());
+                return problem(Culprit::Frame(i), element, "duplicate frame name".into());
             }
             if f.body >= self.bodies.len() {
-                return err(format!("frame \"{}\"", f.name), "attached to a body that does not exist".into());
+                return problem(Culprit::Frame(i), element, "attached to a body that does not exist".into());
             }
+            check_placement(&f.placement).or_else(|m| problem(Culprit::Frame(i), element, m))?;
         }
         // Every degree of freedom must move some mass, or H(q) is singular.
         let mut subtree_mass: Vec<f64> = self.bodies.iter().map(|b| b.inertia.mass).collect();
@@ -70,19 +77,46 @@ impl Model {
             let p = self.joints[i].parent;
             subtree_mass[p] += subtree_mass[i];
         }
-        for i in 1..self.bodies.len() {
-            if subtree_mass[i] <= 0.0 {
-                return err(
-                    format!("joint \"{}\"", self.joints[i].name),
-                    "moves no mass: the joint-space inertia matrix would be singular".into(),
-                );
-            }
+        if let Some(i) = (1..self.bodies.len()).find(|&i| subtree_mass[i] <= 0.0) {
+            return problem(
+                Culprit::Joint(i),
+                format!("joint \"{}\"", self.joints[i].name),
+                "moves no mass: the joint-space inertia matrix would be singular".into(),
+            );
         }
         if !self.gravity.iter().all(|x| x.is_finite()) {
-            return err("gravity".into(), "not finite".into());
+            return problem(Culprit::Model, "gravity".into(), "not finite".into());
         }
         Ok(())
     }
+}
+
+/// Joint `i` on its own: a tree edge, a unit axis, a rigid placement, sensible limits and passive terms.
+fn check_joint(model: &Model, i: usize) -> std::result::Result<(), String> {
+    let j = &model.joints[i];
+    if j.kind == JointKind::Root {
+        return Err("only joint 0 may be the root".into());
+    }
+    if j.parent >= i {
+        return Err(format!("its parent body {} does not come before it (a cycle or a broken tree)", j.parent));
+    }
+    let n = j.axis.norm();
+    if !n.is_finite() || (n - 1.0).abs() > 1e-9 {
+        return Err(format!("axis must be a unit vector, got {:?}", j.axis.as_slice()));
+    }
+    check_placement(&j.placement).map_err(|m| format!("origin: {m}"))?;
+    let l = &j.limits;
+    if l.lower.is_nan() || l.upper.is_nan() || l.lower > l.upper {
+        return Err(format!("limits must satisfy lower ≤ upper, got [{}, {}]", l.lower, l.upper));
+    }
+    if l.velocity.is_nan() || l.velocity < 0.0 || l.effort.is_nan() || l.effort < 0.0 {
+        return Err("velocity and effort limits must be ≥ 0".into());
+    }
+    let s = &j.passive;
+    if !(s.stiffness.is_finite() && s.rest.is_finite() && s.damping.is_finite()) || s.stiffness < 0.0 || s.damping < 0.0 {
+        return Err("spring stiffness and damping must be finite and ≥ 0".into());
+    }
+    Ok(())
 }
 
 /// A physically possible rigid body: mass ≥ 0, inertia symmetric positive semi-definite with principal
@@ -113,6 +147,46 @@ pub fn check_inertia(i: &Inertia) -> std::result::Result<(), String> {
     }
     if a + b < c - tol || a + c < b - tol || b + c < a - tol {
         return Err(format!("principal moments {a:.6e}, {b:.6e}, {c:.6e} kg·m² break the triangle inequality"));
+    }
+    Ok(())
+}
+
+/// A rigid placement: finite numbers (m) and a proper rotation (orthonormal, determinant +1).
+pub fn check_placement(x: &Transform) -> std::result::Result<(), String> {
+    if !x.rotation.iter().chain(x.translation.iter()).all(|v| v.is_finite()) {
+        return Err("not finite (NaN or infinity)".into());
+    }
+    if (x.rotation.transpose() * x.rotation - Mat3::identity()).norm() > 1e-9 || x.rotation.determinant() < 0.0 {
+        return Err("rotation is not a rotation matrix".into());
+    }
+    Ok(())
+}
+
+/// `v` scaled to unit length; a zero or non-finite axis has no direction.
+pub fn unit_axis(v: &Vec3) -> std::result::Result<Vec3, String> {
+    let n = v.norm();
+    if !n.is_finite() || n < 1e-12 {
+        return Err(format!("axis must be a finite non-zero vector, got {:?}", v.as_slice()));
+    }
+    Ok(v / n)
+}
+
+/// A drawable shape: finite, with sizes and radii ≥ 0 (m).
+pub fn check_shape(s: &Shape) -> std::result::Result<(), String> {
+    let (numbers, sizes): (Vec<f64>, Vec<f64>) = match s {
+        Shape::Box { origin, size } => (origin.translation.iter().copied().collect(), size.iter().copied().collect()),
+        Shape::Cylinder { origin, radius, length } => (origin.translation.iter().copied().collect(), vec![*radius, *length]),
+        Shape::Capsule { a, b, radius } => (a.iter().chain(b.iter()).copied().collect(), vec![*radius]),
+        Shape::Sphere { center, radius } => (center.iter().copied().collect(), vec![*radius]),
+    };
+    if let Shape::Box { origin, .. } | Shape::Cylinder { origin, .. } = s {
+        check_placement(origin)?;
+    }
+    if !numbers.iter().chain(&sizes).all(|x| x.is_finite()) {
+        return Err("not finite (NaN or infinity)".into());
+    }
+    if sizes.iter().any(|&x| x < 0.0) {
+        return Err(format!("sizes and radii must be ≥ 0 m, got {sizes:?}"));
     }
     Ok(())
 }
