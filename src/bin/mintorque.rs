@@ -106,14 +106,13 @@ fn run_plan(task_path: &Path, out: &Path, solver: Option<SolverArg>, control_poi
     let samples = plan::sample(spec, &planned, &report::sample_times(spec.duration, task.file.output.sample_rate))?;
     let summary = Summary::new(spec, &planned, &samples);
     let resolved = toml::to_string_pretty(&task.file).context("serialising the resolved task")?;
-    report::write_files(
-        out,
-        &[
-            ("trajectory.csv", report::trajectory_csv(spec, &samples).into_bytes()),
-            ("summary.json", serde_json::to_string_pretty(&summary)?.into_bytes()),
-            ("task.resolved.toml", resolved.into_bytes()),
-        ],
-    )?;
+    let mut files = vec![
+        ("trajectory.csv", report::trajectory_csv(spec, &samples).into_bytes()),
+        ("summary.json", serde_json::to_string_pretty(&summary)?.into_bytes()),
+        ("task.resolved.toml", resolved.into_bytes()),
+    ];
+    files.extend(report::record::plan_files(spec, &planned, &samples)?);
+    report::write_files(out, &files)?;
     if !quiet {
         print!("{}", report::summary::text_table(&summary));
         println!("results in {}", out.display());

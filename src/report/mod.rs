@@ -2,6 +2,7 @@
 //! or not at all (every file goes to a temporary directory first and is renamed into place only when all
 //! of them were written).
 
+pub mod record;
 pub mod summary;
 
 pub use summary::Summary;
