@@ -9,6 +9,7 @@
 //! a chain of revolutes joined by massless bodies, each revolute remembering its anatomical `group`.
 //! Closed loops are cut open here and closed again by constraints in the planner.
 
+pub mod human;
 pub mod urdf;
 pub mod validate;
 
