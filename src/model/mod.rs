@@ -10,6 +10,7 @@
 //! Closed loops are cut open here and closed again by constraints in the planner.
 
 pub mod figure;
+pub mod human;
 pub mod urdf;
 pub mod urdf_export;
 pub mod validate;
