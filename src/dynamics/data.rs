@@ -10,6 +10,8 @@ use nalgebra::{DMatrix, DVector};
 pub struct Data {
     /// Body inertias in their own frames (constant; cached from the model).
     pub I_local: Vec<Inertia>,
+    /// Each joint's motion, prepared for the placement pass (constant; derived from the model).
+    pub joint_motion: Vec<super::kinematics::JointMotion>,
 
     // ---- forward pass (kinematics.rs) ----
     /// World placement of each body frame, `⁰Mᵢ`.
@@ -70,6 +72,7 @@ impl Data {
         let nv = model.nv();
         Data {
             I_local: model.bodies.iter().map(|b| b.inertia).collect(),
+            joint_motion: model.joints.iter().map(|j| super::kinematics::JointMotion::of(j.kind, &j.axis)).collect(),
             oMi: vec![Transform::IDENTITY; nb],
             S: vec![Motion::ZERO; nb],
             oI: vec![SpatialInertia::ZERO; nb],

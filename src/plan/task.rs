@@ -405,9 +405,25 @@ fn load_model(m: &ModelSection, base: &Path, origin: &str) -> Result<Model> {
     load_human(name, m.stature, m.mass, origin)
 }
 
-#[allow(unused_variables)]
+/// A built-in human (`model::human`), 1.83 m and 81 kg unless given.
 fn load_human(name: &str, stature: Option<f64>, mass: Option<f64>, origin: &str) -> Result<Model> {
-    Err(Error::task(origin, "model.human", format!("unknown built-in figure \"{name}\"")))
+    use crate::model::human::{HumanParams, Structure};
+    let in_task = |e: Error| match e {
+        Error::Model { element, message, .. } => {
+            let field = match element.as_str() {
+                "structure" => "human",
+                "stature_m" => "stature",
+                "mass_kg" => "mass",
+                other => other,
+            };
+            Error::task(origin, format!("model.{field}"), message)
+        }
+        other => other,
+    };
+    let structure = Structure::from_name(name).map_err(in_task)?;
+    let defaults = HumanParams::default();
+    let params = HumanParams { stature_m: stature.unwrap_or(defaults.stature_m), mass_kg: mass.unwrap_or(defaults.mass_kg) };
+    structure.build(params).map_err(in_task)
 }
 
 /// Turns a posture (names → degrees or metres) into `q` over `base`.
