@@ -59,11 +59,11 @@ impl Plan {
     }
 }
 
-/// Checks a spec for mistakes a user can make, naming the field.
-pub fn validate(spec: &Spec) -> Result<()> {
+/// Checks a spec for mistakes a user can make, naming the field; `origin` names the task in messages.
+pub fn validate(spec: &Spec, origin: &str) -> Result<()> {
     let model = &spec.model;
     let nv = model.nv();
-    let err = |field: &str, message: String| Err(Error::task("task", field, message));
+    let err = |field: &str, message: String| Err(Error::task(origin, field, message));
     if !(spec.duration.is_finite() && spec.duration > 0.0) {
         return err("duration", format!("must be a positive number of seconds, got {}", spec.duration));
     }
@@ -212,7 +212,7 @@ pub fn check_between_nodes(spec: &Spec, x: &[f64], per_span: usize) -> Result<Op
 /// between the nodes. A plan that did not converge is still returned (with `converged() == false` and
 /// the reason): the caller decides what to do with it.
 pub fn plan(spec: &Spec, solver: SolverKind, settings: &Settings, observer: &mut dyn FnMut(&Progress)) -> Result<Plan> {
-    validate(spec)?;
+    validate(spec, "task")?;
     let mut problem = Transcription::new(spec)?;
     let x0 = initial_x(spec, &problem)?;
     let initial_objective = objective_at(&mut problem, &x0).map_err(|e| Error::task("task", "initial guess", e))?;

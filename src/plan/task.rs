@@ -355,6 +355,7 @@ impl Task {
         })?;
         let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
         let spec = resolve(&file, &base, &origin)?;
+        super::validate(&spec, &origin)?;
         let s = &file.solver.settings;
         let settings = Settings {
             tol_stationarity: s.tolerance,
