@@ -16,6 +16,7 @@
 pub mod dynamics;
 pub mod error;
 pub mod model;
+pub mod solve;
 pub mod spatial;
 
 pub use error::{Error, Result};
