@@ -12,8 +12,12 @@
 //!
 //! Both stop on the same, honest convergence test, stated in [`solver`].
 
+pub mod bfgs;
 pub mod linalg;
+pub mod line_search;
 pub mod sparse;
 
+pub use bfgs::{Bfgs, BfgsReport, BfgsSettings, BfgsStatus};
 pub use linalg::{Cholesky, NotPositiveDefinite, SymmetricMatrix};
+pub use line_search::{EvalError, Iterate, LineSearch, Objective};
 pub use sparse::{PatternError, SparseMatrix};
