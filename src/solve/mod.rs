@@ -15,9 +15,13 @@
 pub mod bfgs;
 pub mod linalg;
 pub mod line_search;
+pub mod problem;
+pub mod solver;
 pub mod sparse;
 
 pub use bfgs::{Bfgs, BfgsReport, BfgsSettings, BfgsStatus};
 pub use linalg::{Cholesky, NotPositiveDefinite, SymmetricMatrix};
 pub use line_search::{EvalError, Iterate, LineSearch, Objective};
+pub use problem::{ConstraintKind, Dims, Evaluation, Patterns, Problem, ProblemError, Scales};
+pub use solver::{ConstraintRef, Multipliers, Outcome, Progress, Settings, Solver, StopReason};
 pub use sparse::{PatternError, SparseMatrix};
