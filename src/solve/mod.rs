@@ -12,6 +12,7 @@
 //!
 //! Both stop on the same, honest convergence test, stated in [`solver`].
 
+pub mod auglag;
 pub mod bfgs;
 pub mod linalg;
 pub mod line_search;
@@ -19,6 +20,7 @@ pub mod problem;
 pub mod solver;
 pub mod sparse;
 
+pub use auglag::AugLagBfgs;
 pub use bfgs::{Bfgs, BfgsReport, BfgsSettings, BfgsStatus};
 pub use linalg::{Cholesky, NotPositiveDefinite, SymmetricMatrix};
 pub use line_search::{EvalError, Iterate, LineSearch, Objective};
