@@ -14,14 +14,17 @@
 
 pub mod auglag;
 pub mod bfgs;
+pub mod least_squares;
 pub mod linalg;
 pub mod line_search;
 pub mod problem;
 pub mod solver;
 pub mod sparse;
 
+
 pub use auglag::AugLagBfgs;
 pub use bfgs::{Bfgs, BfgsReport, BfgsSettings, BfgsStatus};
+pub use least_squares::AugLagLevenbergMarquardt;
 pub use linalg::{Cholesky, NotPositiveDefinite, SymmetricMatrix};
 pub use line_search::{EvalError, Iterate, LineSearch, Objective};
 pub use problem::{ConstraintKind, Dims, Evaluation, Patterns, Problem, ProblemError, Scales};
