@@ -21,6 +21,8 @@ pub mod problem;
 pub mod solver;
 pub mod sparse;
 
+#[cfg(test)]
+mod tests;
 
 pub use auglag::AugLagBfgs;
 pub use bfgs::{Bfgs, BfgsReport, BfgsSettings, BfgsStatus};
