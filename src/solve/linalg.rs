@@ -120,6 +120,33 @@ impl SymmetricMatrix {
         }
     }
 
+    /// `A += w v vᵀ` for a vector `v` whose entries belong to the contiguous columns
+    /// `first, first + 1, …, first + v.len() − 1`, known to fit in the band. This is the common case of a
+    /// Jacobian row over consecutive control points, and the inner loops become contiguous axpys.
+    pub(crate) fn add_outer_contiguous(&mut self, first: usize, w: f64, v: &[f64]) {
+        debug_assert!(first + v.len() <= self.n && v.len() <= self.bandwidth() + 1);
+        match &mut self.storage {
+            Storage::Banded { bandwidth, band } => {
+                // Row c = first + p of the lower band holds columns first..=c contiguously.
+                let b = *bandwidth;
+                for (p, &vp) in v.iter().enumerate() {
+                    let c = first + p;
+                    let start = c * (b + 1) + (first + b - c);
+                    axpy(w * vp, &v[..=p], &mut band[start..=start + p]);
+                }
+            }
+            Storage::Dense(m) => {
+                // Column c = first + q (column-major) holds rows c..first+len contiguously.
+                for (q, &vq) in v.iter().enumerate() {
+                    let c = first + q;
+                    let column = &mut m.column_mut(c);
+                    let slice = &mut column.as_mut_slice()[c..first + v.len()];
+                    axpy(w * vq, &v[q..], slice);
+                }
+            }
+        }
+    }
+
     /// The diagonal entry `A[i][i]`.
     pub fn diagonal(&self, i: usize) -> f64 {
         self.get(i, i)
@@ -147,6 +174,13 @@ impl SymmetricMatrix {
     /// The full matrix (tests, diagnostics).
     pub fn to_dense(&self) -> DMatrix<f64> {
         DMatrix::from_fn(self.n, self.n, |i, j| self.get(i, j))
+    }
+}
+
+/// `y += a x`.
+fn axpy(a: f64, x: &[f64], y: &mut [f64]) {
+    for (yi, xi) in y.iter_mut().zip(x) {
+        *yi += a * xi;
     }
 }
 
