@@ -1,0 +1,259 @@
+//! The structured solver: the same method of multipliers as [`super::auglag`], with the inner problem
+//! solved as a nonlinear least-squares problem by Levenberg–Marquardt on the banded Gauss–Newton matrix.
+//!
+//! # The inner problem is a sum of squares
+//!
+//! Completing the square in eq. 10, `λψ + w_pψ² = w_p(ψ + λ/2w_p)² − λ²/4w_p`, and
+//! `ψ + λ/2w_p = max(ĝ + λ/2w_p, 0)` by eq. 11, so
+//!
+//! ```text
+//!   L_A = ½‖r‖² + ‖ρ_eq‖² + ‖ρ_ineq‖² − Σ (λ² + μ²)/4w_p
+//!   ρ_eq = √w_p (ĥ + μ/2w_p),   ρ_ineq = √w_p · max(ĝ + λ/2w_p, 0),
+//! ```
+//!
+//! i.e. `½‖R‖²` up to a constant, with `R = [r; √2 ρ_eq; √2 ρ_ineq]`. Its Jacobian gives the Gauss–Newton
+//! matrix `JᵣᵀJᵣ + 2w_p J_ĥᵀJ_ĥ + 2w_p J_ĝ,activeᵀ J_ĝ,active` (`AugmentedLagrangian::gauss_newton`),
+//! banded when the unknowns are ordered control-point-major, and its gradient `JᵀR` is exactly `∇L_A`
+//! (eq. 25–29): the stationarity test uses the true gradient, whatever the Hessian model.
+//!
+//! # Levenberg–Marquardt
+//!
+//! Step `(JᵀJ + ν D) δ = −∇L_A` with `D` the running maximum of `diag(JᵀJ)` (Moré's scaling, which makes
+//! the method invariant to the units of the unknowns), factorised by the banded Cholesky of
+//! [`super::linalg`]. A step is accepted when the gain ratio `ϱ = ΔL_A / Δmodel > 0`; then
+//! `ν ← ν · max(1/3, 1 − (2ϱ − 1)³)`, otherwise `ν ← ν·β, β ← 2β` (Nielsen 1999; Madsen, Nielsen &
+//! Tingleff, *Methods for non-linear least squares problems*, 2004, sec. 3.2).
+//!
+//! # Large residuals
+//!
+//! Gauss–Newton drops `Σ Rⱼ ∇²Rⱼ`. The minimum-torque residuals are not small at the optimum (holding a
+//! limb against gravity costs torque), so near the solution LM converges linearly rather than
+//! quadratically. That costs iterations, never honesty: the stationarity test uses the exact `∇L_A`.
+//! A quasi-Newton correction (L-BFGS with the banded factor as `H₀`, switched on when LM slowed down) was
+//! tried and removed: on a discretised pendulum (n = 200, torque limits active) it took 400–5000
+//! iterations where plain LM took 70–200, because secant pairs taken across the kinks of `max(ĝ + λ/2w_p, 0)`
+//! mislead it and the line search lacks the trust region's safeguard.
+
+use super::auglag::{solve_with, AugmentedLagrangian, InnerReport, InnerSolver, InnerStatus};
+use super::linalg::{Cholesky, SymmetricMatrix};
+use super::line_search::{norm_inf, EvalError, Iterate};
+use super::problem::{Evaluation, Problem};
+use super::solver::{Outcome, Progress, Settings, Solver};
+
+/// Marquardt parameter at the start of each inner solve (relative to `D`), Nielsen's `τ = 10⁻³`.
+const INITIAL_DAMPING: f64 = 1e-3;
+const MIN_DAMPING: f64 = 1e-15;
+const MAX_DAMPING: f64 = 1e20;
+/// Relative size below which a change of `L_A` is treated as rounding noise.
+const NOISE: f64 = 1e-10;
+
+/// Augmented Lagrangian (eq. 10–11) with Levenberg–Marquardt inner minimisation on the banded
+/// Gauss–Newton matrix. Memory `O(n·b)`, work `O(n·b²)` per iteration for half-bandwidth `b`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct AugLagLevenbergMarquardt;
+
+impl Solver for AugLagLevenbergMarquardt {
+    fn solve(&self, problem: &mut dyn Problem, x0: &[f64], settings: &Settings, observer: &mut dyn FnMut(&Progress)) -> Outcome {
+        solve_with(problem, x0, settings, observer, LevenbergMarquardt::new)
+    }
+}
+
+/// The inner solver's state, allocated once per solve.
+struct LevenbergMarquardt {
+    gram: SymmetricMatrix,
+    factor: Cholesky,
+    /// Moré's scaling `D`: the largest `diag(JᵀJ)` seen.
+    scaling: Vec<f64>,
+    /// `ν D`, the diagonal added before factorising.
+    shift: Vec<f64>,
+    /// `∇L_A` at `x` and at the trial point.
+    gradient: Vec<f64>,
+    gradient_trial: Vec<f64>,
+    step: Vec<f64>,
+    x_trial: Vec<f64>,
+    /// Marquardt parameter `ν` and its growth `β`.
+    damping: f64,
+    growth: f64,
+}
+
+enum Step {
+    Accepted { value: f64 },
+    Stalled,
+    Error(String),
+}
+
+impl LevenbergMarquardt {
+    fn new(eval: &Evaluation) -> Self {
+        let n = eval.jr.ncols();
+        let bandwidth = [&eval.jr, &eval.jh, &eval.jg]
+            .iter()
+            .map(|j| j.gram_bandwidth())
+            .max()
+            .unwrap_or(0);
+        let gram = SymmetricMatrix::for_bandwidth(n, bandwidth);
+        LevenbergMarquardt {
+            factor: Cholesky::for_matrix(&gram),
+            gram,
+            scaling: vec![0.0; n],
+            shift: vec![0.0; n],
+            gradient: vec![0.0; n],
+            gradient_trial: vec![0.0; n],
+            step: vec![0.0; n],
+            x_trial: vec![0.0; n],
+            damping: INITIAL_DAMPING,
+            growth: 2.0,
+        }
+    }
+
+    /// `JᵀJ` at the last evaluated point into `gram`, and `D` updated.
+    fn assemble(&mut self, al: &mut AugmentedLagrangian<'_>) -> Result<(), String> {
+        al.gauss_newton(&mut self.gram)
+            .map_err(|e| format!("internal: Gauss–Newton assembly: {e}"))?;
+        for (j, d) in self.scaling.iter_mut().enumerate() {
+            *d = d.max(self.gram.diagonal(j));
+        }
+        Ok(())
+    }
+
+    /// Factorises `JᵀJ + νD`, raising `ν` until that succeeds.
+    fn factorise(&mut self) -> Result<(), ()> {
+        loop {
+            if self.damping > MAX_DAMPING {
+                return Err(());
+            }
+            for (s, d) in self.shift.iter_mut().zip(&self.scaling) {
+                // A variable no residual touches has d = 0; any positive value keeps the system definite.
+                *s = self.damping * if *d > 0.0 { *d } else { 1.0 };
+            }
+            if self.factor.factor(&self.gram, Some(&self.shift)).is_ok() {
+                return Ok(());
+            }
+            self.reject();
+        }
+    }
+
+    fn reject(&mut self) {
+        self.damping *= self.growth;
+        self.growth *= 2.0;
+    }
+
+    /// One accepted LM step from `x` (where `L_A = value`), trying larger `ν` until the gain ratio is positive.
+    fn step(&mut self, al: &mut AugmentedLagrangian<'_>, x: &mut [f64], value: f64) -> Step {
+        loop {
+            if self.factorise().is_err() {
+                return Step::Stalled;
+            }
+            for (s, g) in self.step.iter_mut().zip(&self.gradient) {
+                *s = -g;
+            }
+            self.factor.solve_in_place(&mut self.step);
+            if !self.step.iter().all(|s| s.is_finite()) {
+                self.reject();
+                continue;
+            }
+            // Model decrease L(0) − L(δ) = −gᵀδ − ½δᵀ(JᵀJ)δ = ½ δᵀ(νDδ − g), as (JᵀJ + νD)δ = −g.
+            let predicted: f64 = 0.5
+                * self
+                    .step
+                    .iter()
+                    .zip(&self.shift)
+                    .zip(&self.gradient)
+                    .map(|((d, s), g)| d * (s * d - g))
+                    .sum::<f64>();
+            let mut moved = false;
+            for ((xt, xi), d) in self.x_trial.iter_mut().zip(x.iter()).zip(&self.step) {
+                *xt = xi + d;
+                moved |= *xt != *xi;
+            }
+            if !moved || predicted.is_nan() || predicted <= 0.0 {
+                return Step::Stalled;
+            }
+            let trial = match al.evaluate(&self.x_trial, true) {
+                Ok(()) => al.value(),
+                Err(EvalError::Failed(m)) => return Step::Error(m),
+                Err(EvalError::NonFinite(_)) => f64::INFINITY,
+            };
+            let mut actual = value - trial;
+            if trial.is_finite() {
+                al.gradient(&mut self.gradient_trial);
+                if actual.abs() <= NOISE * value.abs() {
+                    // ΔL_A is lost in rounding near a minimiser: measure it by the trapezoidal rule on the
+                    // gradients instead, −½ δᵀ(g + g₊) (the trust-region analogue of the approximate Wolfe
+                    // condition of the line search).
+                    actual = -0.5
+                        * self
+                            .step
+                            .iter()
+                            .zip(&self.gradient)
+                            .zip(&self.gradient_trial)
+                            .map(|((d, g), gt)| d * (g + gt))
+                            .sum::<f64>();
+                }
+            }
+            let gain = actual / predicted;
+            if gain > 0.0 && trial.is_finite() {
+                std::mem::swap(&mut self.gradient, &mut self.gradient_trial);
+                x.copy_from_slice(&self.x_trial);
+                self.damping = (self.damping * (1.0 / 3.0f64).max(1.0 - (2.0 * gain - 1.0).powi(3))).max(MIN_DAMPING);
+                self.growth = 2.0;
+                return Step::Accepted { value: trial };
+            }
+            self.reject();
+        }
+    }
+}
+
+impl InnerSolver for LevenbergMarquardt {
+    /// Gauss–Newton steps make visible progress or none: 50 steps without it is a stall.
+    fn stall_window(&self) -> usize {
+        50
+    }
+
+    fn minimise(
+        &mut self,
+        al: &mut AugmentedLagrangian<'_>,
+        x: &mut [f64],
+        tolerance: f64,
+        max_iterations: usize,
+    ) -> InnerReport {
+        let report = |status, iterations| InnerReport { status, iterations };
+        if let Err(e) = al.ensure_evaluated(x) {
+            return report(InnerStatus::EvaluationError(e.to_string()), 0);
+        }
+        self.damping = INITIAL_DAMPING;
+        self.growth = 2.0;
+        let mut value = al.value();
+        al.gradient(&mut self.gradient);
+        let mut iterations = 0;
+        loop {
+            // Here `al` was last evaluated at `x`.
+            let gradient_norm = norm_inf(&self.gradient);
+            let go_on = al.iteration_done(&Iterate {
+                iteration: iterations,
+                x,
+                f: value,
+                gradient_norm,
+            });
+            if gradient_norm <= tolerance * al.gradient_scale() {
+                return report(InnerStatus::Converged, iterations);
+            }
+            if !go_on {
+                return report(InnerStatus::Stopped, iterations);
+            }
+            if iterations >= max_iterations {
+                return report(InnerStatus::MaxIterations, iterations);
+            }
+            if let Err(m) = self.assemble(al) {
+                return report(InnerStatus::EvaluationError(m), iterations);
+            }
+            match self.step(al, x, value) {
+                Step::Accepted { value: v } => {
+                    value = v;
+                    iterations += 1;
+                }
+                Step::Stalled => return report(InnerStatus::Stalled, iterations),
+                Step::Error(m) => return report(InnerStatus::EvaluationError(m), iterations),
+            }
+        }
+    }
+}

@@ -1,0 +1,209 @@
+//! The finite problem a solver sees (paper eq. 1–3, in least-squares form):
+//!
+//! ```text
+//!   minimise  F(x) = ½ ‖r(x)‖²     x ∈ ℝⁿ (the B-spline control points)
+//!   subject to  h(x) = 0           (equalities, eq. 3: poses, loop closure)
+//!               g(x) ≤ 0           (inequalities, eq. 2: joint and torque limits)
+//! ```
+//!
+//! The objective is given by its residuals `r` (for the planner `rⱼ = √wⱼ τ` at quadrature node `j`), so a
+//! solver can use the Gauss–Newton structure `∇²F ≈ JᵣᵀJᵣ`. All Jacobians are sparse with a pattern fixed
+//! for the whole solve.
+
+use super::sparse::{PatternError, SparseMatrix};
+
+/// Sizes of a problem.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Dims {
+    /// Unknowns.
+    pub n: usize,
+    /// Objective residuals.
+    pub n_res: usize,
+    /// Equality constraints `h`.
+    pub n_eq: usize,
+    /// Inequality constraints `g`.
+    pub n_ineq: usize,
+}
+
+/// Column lists, one per row, of the Jacobians `∂r/∂x`, `∂h/∂x` and `∂g/∂x`. A row's values are written in
+/// the order of its list.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Patterns {
+    pub r: Vec<Vec<usize>>,
+    pub h: Vec<Vec<usize>>,
+    pub g: Vec<Vec<usize>>,
+}
+
+impl Patterns {
+    /// Every row touches every column (small dense problems, tests).
+    pub fn dense(dims: Dims) -> Self {
+        let all = |rows: usize| (0..rows).map(|_| (0..dims.n).collect()).collect();
+        Patterns {
+            r: all(dims.n_res),
+            h: all(dims.n_eq),
+            g: all(dims.n_ineq),
+        }
+    }
+}
+
+/// Which family a constraint belongs to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+pub enum ConstraintKind {
+    /// `h_k(x) = 0`.
+    Equality,
+    /// `g_i(x) ≤ 0`.
+    Inequality,
+}
+
+impl std::fmt::Display for ConstraintKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            ConstraintKind::Equality => "equality",
+            ConstraintKind::Inequality => "inequality",
+        })
+    }
+}
+
+/// Per-constraint scales `s > 0`: a solver works with `h_k/s_k` and `g_i/s_i`, so the violation tolerance
+/// means the same for an angle in radians and a torque in N·m (e.g. `s` = the torque limit). An empty
+/// vector means all ones.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Scales {
+    pub eq: Vec<f64>,
+    pub ineq: Vec<f64>,
+}
+
+/// Values (and, when asked, Jacobians) at one point. Built once per solve by [`Evaluation::new`]; the
+/// problem overwrites `r`, `h`, `g` and, when `want_jac`, the Jacobians' values (which the solver zeroes
+/// before the call, so a problem may accumulate into them with [`SparseMatrix::add`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Evaluation {
+    pub r: Vec<f64>,
+    pub h: Vec<f64>,
+    pub g: Vec<f64>,
+    pub jr: SparseMatrix,
+    pub jh: SparseMatrix,
+    pub jg: SparseMatrix,
+}
+
+/// A problem's description does not hang together.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum ProblemError {
+    #[error("jacobian pattern of {which}: {rows} rows, but dims say {expected}")]
+    PatternRows {
+        which: &'static str,
+        rows: usize,
+        expected: usize,
+    },
+    #[error("jacobian pattern of {which}: {source}")]
+    Pattern {
+        which: &'static str,
+        #[source]
+        source: PatternError,
+    },
+    #[error("scales of the {kind} constraints: {message}")]
+    Scales { kind: ConstraintKind, message: String },
+}
+
+impl Evaluation {
+    /// Buffers shaped by `dims` and `patterns`, checking that they agree.
+    pub fn new(dims: Dims, patterns: &Patterns) -> Result<Self, ProblemError> {
+        let build = |which: &'static str, rows: &[Vec<usize>], expected: usize| {
+            if rows.len() != expected {
+                return Err(ProblemError::PatternRows {
+                    which,
+                    rows: rows.len(),
+                    expected,
+                });
+            }
+            SparseMatrix::from_rows(dims.n, rows).map_err(|source| ProblemError::Pattern { which, source })
+        };
+        Ok(Evaluation {
+            r: vec![0.0; dims.n_res],
+            h: vec![0.0; dims.n_eq],
+            g: vec![0.0; dims.n_ineq],
+            jr: build("r", &patterns.r, dims.n_res)?,
+            jh: build("h", &patterns.h, dims.n_eq)?,
+            jg: build("g", &patterns.g, dims.n_ineq)?,
+        })
+    }
+
+    /// `F = ½ ‖r‖²`.
+    pub fn objective(&self) -> f64 {
+        0.5 * self.r.iter().map(|v| v * v).sum::<f64>()
+    }
+
+    /// The first non-finite entry, described (`None` if all values are finite).
+    pub fn first_non_finite(&self, with_jacobians: bool) -> Option<String> {
+        let vectors = [("r", &self.r), ("h", &self.h), ("g", &self.g)];
+        for (name, v) in vectors {
+            if let Some(i) = v.iter().position(|x| !x.is_finite()) {
+                return Some(format!("{name}[{i}] = {}", v[i]));
+            }
+        }
+        if with_jacobians {
+            for (name, m) in [("∂r/∂x", &self.jr), ("∂h/∂x", &self.jh), ("∂g/∂x", &self.jg)] {
+                for i in 0..m.nrows() {
+                    if let Some(p) = m.row_values(i).iter().position(|x| !x.is_finite()) {
+                        return Some(format!(
+                            "{name} row {i}, column {} = {}",
+                            m.row_cols(i)[p],
+                            m.row_values(i)[p]
+                        ));
+                    }
+                }
+            }
+        }
+        None
+    }
+}
+
+/// A finite-dimensional constrained least-squares problem.
+pub trait Problem {
+    fn dims(&self) -> Dims;
+
+    /// Sparsity of the Jacobians (called once per solve).
+    fn jacobian_patterns(&self) -> Patterns;
+
+    /// Writes `r(x)`, `h(x)`, `g(x)` into `out`, and their Jacobians when `want_jac`. An `Err` stops the solve
+    /// with [`StopReason::EvaluationError`](super::StopReason::EvaluationError); non-finite values are caught
+    /// by the solver.
+    fn evaluate(&mut self, x: &[f64], want_jac: bool, out: &mut Evaluation) -> Result<(), String>;
+
+    /// Per-constraint scales for the violation tolerance (default: all ones).
+    fn scales(&self) -> Scales {
+        Scales::default()
+    }
+
+    /// A human-readable name, e.g. "torque limit of joint elbow at t = 0.41 s".
+    fn constraint_name(&self, kind: ConstraintKind, index: usize) -> String {
+        format!("{kind} constraint {index}")
+    }
+}
+
+/// Scales checked against `dims`, with empty vectors expanded to ones.
+pub(crate) fn checked_scales(problem: &dyn Problem, dims: Dims) -> Result<Scales, ProblemError> {
+    let given = problem.scales();
+    let check = |kind: ConstraintKind, s: Vec<f64>, len: usize| {
+        if s.is_empty() {
+            return Ok(vec![1.0; len]);
+        }
+        if s.len() != len {
+            return Err(ProblemError::Scales {
+                kind,
+                message: format!("{} given for {len} constraints", s.len()),
+            });
+        }
+        if let Some(i) = s.iter().position(|v| !(v.is_finite() && *v > 0.0)) {
+            return Err(ProblemError::Scales {
+                kind,
+                message: format!("scale {i} is {}, must be finite and positive", s[i]),
+            });
+        }
+        Ok(s)
+    };
+    Ok(Scales {
+        eq: check(ConstraintKind::Equality, given.eq, dims.n_eq)?,
+        ineq: check(ConstraintKind::Inequality, given.ineq, dims.n_ineq)?,
+    })
+}

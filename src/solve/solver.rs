@@ -1,0 +1,183 @@
+//! What every solver takes and returns.
+//!
+//! # Convergence test
+//!
+//! With `F = ½‖r‖²`, multipliers `λ ≥ 0` (inequalities) and `μ` (equalities) in the problem's own units,
+//! scales `s` from [`Problem::scales`], and the Lagrangian of eq. 4,
+//! `ℓ(x, λ, μ) = F(x) + Σᵢ λᵢ gᵢ(x) + Σ_k μ_k h_k(x)`, a point is **converged** when all of
+//!
+//! ```text
+//!   stationarity     ‖∇ₓℓ(x, λ, μ)‖∞                          ≤ tol_stationarity · (1 + |F(x)|)   (eq. 7)
+//!   feasibility      max( max_k |h_k(x)|/s_k , max_i gᵢ(x)⁺/sᵢ ) ≤ tol_violation                 (eq. 5)
+//!   complementarity  max_i λᵢ · (−gᵢ(x))⁺                      ≤ tol_stationarity · (1 + |F(x)|)   (eq. 6)
+//! ```
+//!
+//! hold (`a⁺ = max(a, 0)`; `λ ≥ 0`, eq. 8, holds by construction). `λᵢ gᵢ` has the units of `F`, so the
+//! complementarity test is independent of the scales. The gradient is the true one, `Jᵣᵀr + J_gᵀλ + J_hᵀμ`,
+//! whichever model of the Hessian a solver uses. The multipliers are those reported in
+//! [`Outcome::multipliers`]: the method of multipliers' estimates `λ + 2w_pψ`, `μ + 2w_p h` at `x`.
+
+use serde::{Deserialize, Serialize};
+use std::fmt;
+
+use super::problem::{ConstraintKind, Problem};
+
+/// Lagrange multipliers in the problem's units: `lambda` for the inequalities `g ≤ 0` (eq. 4, `λᵢ ≥ 0`),
+/// `mu` for the equalities `h = 0`.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Multipliers {
+    pub lambda: Vec<f64>,
+    pub mu: Vec<f64>,
+}
+
+/// Tolerances and limits. Deserialisable from a task file; missing fields take the defaults.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Settings {
+    /// Relative stationarity (and complementarity) tolerance; see the [module docs](self).
+    pub tol_stationarity: f64,
+    /// Tolerance on the scaled constraint violation.
+    pub tol_violation: f64,
+    /// Inner iterations (accepted steps) allowed over the whole solve.
+    pub max_iterations: usize,
+    /// Multiplier updates allowed.
+    pub max_outer_iterations: usize,
+    /// Initial penalty weight `w_p` of eq. 10. `None`: chosen from the starting point,
+    /// `w_p = 5·max(1, |F|) / max(1, ½‖c‖²)` clamped to `[10⁻⁸, 10⁸]` (`c` the scaled violations), as in
+    /// Birgin & Martínez's ALGENCAN, so that penalty and objective start on a par.
+    pub initial_penalty: Option<f64>,
+    /// Factor by which `w_p` grows when the violation did not decrease enough.
+    pub penalty_growth: f64,
+    /// The violation must shrink by this factor per outer iteration, or `w_p` grows.
+    pub violation_decrease: f64,
+    /// `w_p` beyond which a still-infeasible problem is declared infeasible.
+    pub max_penalty: f64,
+    /// Wall-clock limit in seconds.
+    pub time_limit: Option<f64>,
+    /// Multipliers to start from (e.g. from a previous solve of a similar problem); zero if `None`.
+    pub warm_start: Option<Multipliers>,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            tol_stationarity: 1e-6,
+            tol_violation: 1e-6,
+            max_iterations: 5000,
+            max_outer_iterations: 60,
+            initial_penalty: None,
+            penalty_growth: 10.0,
+            violation_decrease: 0.25,
+            max_penalty: 1e12,
+            time_limit: None,
+            warm_start: None,
+        }
+    }
+}
+
+/// Reported after every inner iteration.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Progress {
+    /// Multiplier updates so far.
+    pub outer_iteration: usize,
+    /// Inner iterations (accepted steps) so far, over the whole solve.
+    pub iteration: usize,
+    pub evaluations: usize,
+    /// `F(x) = ½‖r‖²`.
+    pub objective: f64,
+    /// Largest scaled violation.
+    pub violation: f64,
+    /// `‖∇ₓL_A‖∞ / (1 + |F|)`: the stationarity measure of the test, evaluated with the multiplier
+    /// estimates the next update would produce (for which `∇ₓL_A = ∇ₓℓ`).
+    pub stationarity: f64,
+    /// Current `w_p`.
+    pub penalty: f64,
+}
+
+/// A constraint, identified and named.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ConstraintRef {
+    pub kind: ConstraintKind,
+    pub index: usize,
+    pub name: String,
+}
+
+/// Why a solve stopped.
+#[derive(Clone, Debug, PartialEq)]
+pub enum StopReason {
+    /// The convergence test of the [module docs](self) holds.
+    Converged,
+    /// The inner-iteration or outer-iteration budget ran out.
+    MaxIterations,
+    /// In two successive outer iterations the inner line search found no acceptable step (not even along
+    /// steepest descent).
+    LineSearchFailed,
+    /// No further progress at this precision: in two successive outer iterations the inner solver's steps
+    /// vanished or made no progress for a while (typically a tolerance below what rounding and the problem's
+    /// conditioning allow). `Outcome::worst_constraint` says which constraint is worst at that point.
+    Stalled,
+    /// The penalty reached its maximum and the constraints are still violated: probably no feasible point
+    /// near here. Names the worst constraint and its scaled violation.
+    Infeasible {
+        worst: String,
+        violation: f64,
+    },
+    TimeLimit,
+    /// The problem failed to evaluate or produced NaN/∞ at an accepted point.
+    EvaluationError(String),
+    /// The problem's description or the arguments do not hang together (sizes, patterns, scales).
+    InvalidInput(String),
+}
+
+impl fmt::Display for StopReason {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            StopReason::Converged => f.write_str("converged"),
+            StopReason::MaxIterations => f.write_str("iteration limit reached"),
+            StopReason::LineSearchFailed => f.write_str("line search failed to find an acceptable step"),
+            StopReason::Stalled => f.write_str("stalled: no further progress at this precision"),
+            StopReason::Infeasible { worst, violation } => {
+                write!(
+                    f,
+                    "infeasible: {worst} still violated by {violation:.3e} (scaled) at the largest penalty"
+                )
+            }
+            StopReason::TimeLimit => f.write_str("time limit reached"),
+            StopReason::EvaluationError(m) => write!(f, "evaluation failed: {m}"),
+            StopReason::InvalidInput(m) => write!(f, "invalid problem: {m}"),
+        }
+    }
+}
+
+/// The result of a solve: always the best point reached, with an honest account of it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Outcome {
+    pub x: Vec<f64>,
+    /// `F(x)`.
+    pub objective: f64,
+    /// Whether the convergence test of the [module docs](self) holds at `x` with `multipliers`.
+    pub converged: bool,
+    pub reason: StopReason,
+    /// Inner iterations (accepted steps).
+    pub iterations: usize,
+    /// Multiplier updates.
+    pub outer_iterations: usize,
+    /// Calls to [`Problem::evaluate`].
+    pub evaluations: usize,
+    /// The larger of the stationarity and complementarity measures of the test (both relative to `1 + |F|`).
+    pub stationarity: f64,
+    /// Largest scaled violation, and which constraint has it (`None` if there are no constraints).
+    pub worst_violation: f64,
+    pub worst_constraint: Option<ConstraintRef>,
+    /// Multipliers at `x`, in the problem's units; pass them back as [`Settings::warm_start`] to resume.
+    pub multipliers: Multipliers,
+    /// Final `w_p`.
+    pub penalty: f64,
+}
+
+/// A method for the problem of [`Problem`].
+pub trait Solver {
+    /// Solves from `x0`, calling `observer` after every inner iteration. Never panics on bad input: a
+    /// malformed problem or a failed evaluation comes back as the [`Outcome::reason`].
+    fn solve(&self, problem: &mut dyn Problem, x0: &[f64], settings: &Settings, observer: &mut dyn FnMut(&Progress)) -> Outcome;
+}
