@@ -64,21 +64,12 @@ fn table_one_sums_to_81_115_kg_not_exactly_81() {
     assert_close(sum, 81.11512, 1e-9, "Table I total (kg)");
     assert_close(human::TABLE_TOTAL_MASS_KG, sum, 1e-12, "TABLE_TOTAL_MASS_KG");
     let excess = (sum - human::REFERENCE_MASS_KG) / human::REFERENCE_MASS_KG;
-    assert!(
-        excess > 0.0 && excess < 0.0015,
-        "Table I is {:.3} % off 81 kg",
-        excess * 100.0
-    );
+    assert!(excess > 0.0 && excess < 0.0015, "Table I is {:.3} % off 81 kg", excess * 100.0);
     let paired: u32 = human::TABLE_I.iter().filter(|r| r.count == 2).map(|_| 1).sum();
     assert_eq!(paired, 6, "arms ×2, legs ×2, feet, palms");
     // Limb rows carry a radius, torso rows a width and thickness.
     for row in &human::TABLE_I {
-        assert_eq!(
-            row.radius_m.is_some(),
-            row.count == 2 && row.length_m.is_some(),
-            "{}",
-            row.segment
-        );
+        assert_eq!(row.radius_m.is_some(), row.count == 2 && row.length_m.is_some(), "{}", row.segment);
         assert_eq!(row.width_m.is_some(), row.segment.ends_with("torso"), "{}", row.segment);
     }
 }
@@ -107,12 +98,7 @@ fn mass_and_height_come_out_right_at_every_size() {
             let m = human::build(structure, p).unwrap();
             // The push-up chain is cut at the wrist: the palms lie on the floor, outside the model.
             let want = if structure == Structure::PushUp { mass - palms } else { mass };
-            assert_close(
-                m.total_mass(),
-                want,
-                1e-9,
-                &format!("{structure} mass at {stature} m {mass} kg"),
-            );
+            assert_close(m.total_mass(), want, 1e-9, &format!("{structure} mass at {stature} m {mass} kg"));
         }
         for structure in [Structure::Sagittal, Structure::FreeArms, Structure::PushUp] {
             let m = human::build(structure, p).unwrap();
@@ -257,18 +243,11 @@ fn sagittal_zero_pose_is_upright() {
     assert_close(head.z, 1.83, 1e-12, "head height");
     assert!(heel.x < 0.0 && toe.x > 0.0 && toe.x - heel.x > 0.25, "foot {heel:?}..{toe:?}");
     let hands = at.point("hands");
-    assert!(
-        hands.z > 0.6 && hands.z < 0.95 && hands.x.abs() < 1e-12,
-        "hands hang at {hands:?}"
-    );
+    assert!(hands.z > 0.6 && hands.z < 0.95 && hands.x.abs() < 1e-12, "hands hang at {hands:?}");
     assert_eq!(at.point("barbell"), hands);
     for f in &m.frames {
         let r = at.frame(&f.name).rotation;
-        assert!(
-            (r - mintorque::spatial::Mat3::identity()).norm() < 1e-12,
-            "{} is world-aligned",
-            f.name
-        );
+        assert!((r - mintorque::spatial::Mat3::identity()).norm() < 1e-12, "{} is world-aligned", f.name);
     }
 }
 
@@ -279,13 +258,7 @@ fn limits_contain_zero_and_the_reference_pose() {
         let q = structure.reference_pose(HumanParams::default()).unwrap();
         for (j, &qi) in m.joints[1..].iter().zip(&q) {
             let l = &j.limits;
-            assert!(
-                l.lower <= 0.0 && 0.0 <= l.upper,
-                "{structure} {}: 0 outside [{}, {}]",
-                j.name,
-                l.lower,
-                l.upper
-            );
+            assert!(l.lower <= 0.0 && 0.0 <= l.upper, "{structure} {}: 0 outside [{}, {}]", j.name, l.lower, l.upper);
             assert!(l.lower <= qi && qi <= l.upper, "{structure} {}: {qi} outside limits", j.name);
             assert!(l.upper - l.lower > 0.5, "{structure} {}: a real range", j.name);
         }
@@ -300,10 +273,7 @@ fn reference_poses_are_the_documented_postures() {
     let at = Pose::new(&m, &Structure::Hanging.reference_pose(p).unwrap());
     let (hands, head, toe, heel) = (at.point("hands"), at.point("head_top"), at.point("toe"), at.point("heel"));
     assert_close(hands.norm(), 0.0, 1e-12, "hands on the bar");
-    assert!(
-        head.z < 0.0 && heel.z < head.z - 1.0,
-        "hangs below the bar, feet down: {head:?} {heel:?}"
-    );
+    assert!(head.z < 0.0 && heel.z < head.z - 1.0, "hangs below the bar, feet down: {head:?} {heel:?}");
     assert!(toe.x > heel.x, "faces forward");
     // The feet reach forward of the ankles, so the straight dead hang is 2 mm off balance.
     assert_close(at.com().x, 0.0, 0.005, "CoM below the bar");
@@ -367,16 +337,11 @@ fn positive_angles_mean_the_same_on_both_free_arms() {
     assert!(at.point("l_hand").y < y_shoulder - 0.25, "{:?}", at.point("l_hand"));
     assert!(at.point("r_hand").y > -y_shoulder + 0.25, "{:?}", at.point("r_hand"));
     // Mirror symmetry of any symmetric pose.
-    let set: Vec<(String, f64)> = [
-        ("shoulder_z", 0.3),
-        ("shoulder_y", 0.7),
-        ("shoulder_x", 0.4),
-        ("elbow", 1.1),
-        ("wrist", -0.2),
-    ]
-    .iter()
-    .flat_map(|&(j, a)| [(format!("l_{j}"), a), (format!("r_{j}"), a)])
-    .collect();
+    let set: Vec<(String, f64)> =
+        [("shoulder_z", 0.3), ("shoulder_y", 0.7), ("shoulder_x", 0.4), ("elbow", 1.1), ("wrist", -0.2)]
+            .iter()
+            .flat_map(|&(j, a)| [(format!("l_{j}"), a), (format!("r_{j}"), a)])
+            .collect();
     let set: Vec<(&str, f64)> = set.iter().map(|(j, a)| (j.as_str(), *a)).collect();
     let at = moved(&set);
     let (l, r) = (at.point("l_hand"), at.point("r_hand"));
@@ -398,15 +363,8 @@ fn anatomical_angles_mean_the_same_whichever_way_a_chain_runs() {
     // The same anatomical posture must give the same body shape in every structure, although the
     // hanging chain crosses wrist, elbow, shoulder and lumbar spine from the distal side and the feet-rooted
     // chains cross ankle, knee and hip that way.
-    let angles = [
-        ("ankle", 0.15),
-        ("knee", 0.8),
-        ("hip", 0.6),
-        ("lumbar", -0.2),
-        ("shoulder", 1.3),
-        ("elbow", 0.9),
-        ("wrist", 0.4),
-    ];
+    let angles =
+        [("ankle", 0.15), ("knee", 0.8), ("hip", 0.6), ("lumbar", -0.2), ("shoulder", 1.3), ("elbow", 0.9), ("wrist", 0.4)];
     let sagittal = model(Structure::Sagittal);
     let ref_pose = Pose::new(&sagittal, &pose(&sagittal, &angles));
     let hanging = model(Structure::Hanging);
@@ -440,36 +398,16 @@ fn lumped_limbs_double_mass_and_strength() {
     let body = |m: &Model, name: &str| m.bodies[m.body_index(name).unwrap()].clone();
     let p = HumanParams::default();
     let arms = body(&sagittal, "upper_arms");
-    assert_close(
-        arms.inertia.mass,
-        2.0 * human::UPPER_ARM_MASS_KG * p.mass_scale(),
-        1e-12,
-        "two upper arms",
-    );
+    assert_close(arms.inertia.mass, 2.0 * human::UPPER_ARM_MASS_KG * p.mass_scale(), 1e-12, "two upper arms");
     assert_close(arms.inertia.com.y, 0.0, 1e-12, "lumped on the midline");
     // About the pitch axis, the pair's inertia is twice one arm's.
     let one = body(&free, "l_upper_arm").inertia.inertia_com;
     assert_close(arms.inertia.inertia_com[(1, 1)], 2.0 * one[(1, 1)], 1e-12, "I_yy of the pair");
     let joint = |m: &Model, name: &str| m.joints[m.dof_index(name).unwrap() + 1].clone();
-    assert_close(
-        joint(&sagittal, "elbow").limits.effort,
-        2.0 * joint(&free, "l_elbow").limits.effort,
-        1e-9,
-        "effort",
-    );
-    assert_close(
-        joint(&free, "l_elbow").limits.effort,
-        70.0,
-        1e-9,
-        "elbow strength at 81 kg (N·m)",
-    );
+    assert_close(joint(&sagittal, "elbow").limits.effort, 2.0 * joint(&free, "l_elbow").limits.effort, 1e-9, "effort");
+    assert_close(joint(&free, "l_elbow").limits.effort, 70.0, 1e-9, "elbow strength at 81 kg (N·m)");
     assert_close(joint(&sagittal, "lumbar").limits.effort, 250.0, 1e-9, "the spine is single");
-    assert_close(
-        joint(&sagittal, "shoulder").limits.upper,
-        PI,
-        1e-12,
-        "shoulder flexion to 180°",
-    );
+    assert_close(joint(&sagittal, "shoulder").limits.upper, PI, 1e-12, "shoulder flexion to 180°");
 }
 
 #[test]

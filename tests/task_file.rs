@@ -40,7 +40,10 @@ fn the_good_task_parses_and_converts_degrees() {
 
 #[test]
 fn unknown_joint_names_the_joint_and_lists_the_known_ones() {
-    assert_mentions(&GOOD.replace("start = { shoulder = 0.0, elbow = 0.0 }", "start = { shoulder = 0.0, elbo = 0.0 }"), &["motion.start.elbo", "no joint \"elbo\"", "shoulder, elbow"]);
+    assert_mentions(
+        &GOOD.replace("start = { shoulder = 0.0, elbow = 0.0 }", "start = { shoulder = 0.0, elbo = 0.0 }"),
+        &["motion.start.elbo", "no joint \"elbo\"", "shoulder, elbow"],
+    );
 }
 
 #[test]
@@ -51,7 +54,10 @@ fn unknown_frame_is_named() {
 
 #[test]
 fn start_outside_limits_says_by_how_much() {
-    assert_mentions(&GOOD.replace("shoulder = 0.0,", "shoulder = 200.0,"), &["start.shoulder", "200.000°", "outside the joint's limits"]);
+    assert_mentions(
+        &GOOD.replace("shoulder = 0.0,", "shoulder = 200.0,"),
+        &["start.shoulder", "200.000°", "outside the joint's limits"],
+    );
 }
 
 #[test]
@@ -68,7 +74,10 @@ fn too_few_control_points() {
 
 #[test]
 fn nan_is_refused() {
-    assert_mentions(&GOOD.replace("goal = { shoulder = 90.0,", "goal = { shoulder = nan,"), &["motion.goal.shoulder", "not a finite number"]);
+    assert_mentions(
+        &GOOD.replace("goal = { shoulder = 90.0,", "goal = { shoulder = nan,"),
+        &["motion.goal.shoulder", "not a finite number"],
+    );
 }
 
 #[test]
@@ -98,7 +107,8 @@ fn contact_that_the_goal_cannot_keep() {
 
 #[test]
 fn human_out_of_range_and_unknown_structure() {
-    let h = |extra: &str| format!("[model]\nhuman = \"sagittal\"\n{extra}\n[motion]\nduration = 1.0\nstart = {{}}\ngoal = {{}}\n");
+    let h =
+        |extra: &str| format!("[model]\nhuman = \"sagittal\"\n{extra}\n[motion]\nduration = 1.0\nstart = {{}}\ngoal = {{}}\n");
     assert_mentions(&h("stature = 3.1"), &["model.stature", "0.5", "2.5"]);
     assert_mentions(&h("mass = 10"), &["model.mass", "20", "250"]);
     assert_mentions(&h("").replace("sagittal", "octopus"), &["model.human", "octopus", "sagittal"]);

@@ -31,9 +31,16 @@ pub fn local_axis(kind: JointKind, axis: &Vec3) -> Motion {
 pub enum JointMotion {
     Root,
     /// Rotation about coordinate axis `k` (0, 1, 2) of the joint frame, with `sign` ±1.
-    RevoluteAxis { k: usize, sign: f64 },
-    Revolute { axis: Vec3 },
-    Prismatic { axis: Vec3 },
+    RevoluteAxis {
+        k: usize,
+        sign: f64,
+    },
+    Revolute {
+        axis: Vec3,
+    },
+    Prismatic {
+        axis: Vec3,
+    },
 }
 
 impl JointMotion {

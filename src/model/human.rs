@@ -120,15 +120,7 @@ pub struct TableRow {
 }
 
 const fn limb_row(segment: &'static str, mass_kg: f64, length_m: f64, radius_m: f64) -> TableRow {
-    TableRow {
-        segment,
-        mass_kg,
-        count: 2,
-        length_m: Some(length_m),
-        radius_m: Some(radius_m),
-        width_m: None,
-        thickness_m: None,
-    }
+    TableRow { segment, mass_kg, count: 2, length_m: Some(length_m), radius_m: Some(radius_m), width_m: None, thickness_m: None }
 }
 
 const fn torso_row(segment: &'static str, mass_kg: f64, length_m: f64, width_m: f64, thickness_m: f64) -> TableRow {
@@ -144,42 +136,16 @@ const fn torso_row(segment: &'static str, mass_kg: f64, length_m: f64, width_m: 
 }
 
 const fn mass_row(segment: &'static str, mass_kg: f64, count: u32) -> TableRow {
-    TableRow {
-        segment,
-        mass_kg,
-        count,
-        length_m: None,
-        radius_m: None,
-        width_m: None,
-        thickness_m: None,
-    }
+    TableRow { segment, mass_kg, count, length_m: None, radius_m: None, width_m: None, thickness_m: None }
 }
 
 /// Table I's link segments in SI units, in the paper's order.
 pub const TABLE_I: [TableRow; 11] = [
     limb_row("lower arm", LOWER_ARM_MASS_KG, LOWER_ARM_LENGTH_M, LOWER_ARM_RADIUS_M),
     limb_row("upper arm", UPPER_ARM_MASS_KG, UPPER_ARM_LENGTH_M, UPPER_ARM_RADIUS_M),
-    torso_row(
-        "upper torso",
-        UPPER_TORSO_MASS_KG,
-        UPPER_TORSO_LENGTH_M,
-        UPPER_TORSO_WIDTH_M,
-        UPPER_TORSO_THICKNESS_M,
-    ),
-    torso_row(
-        "middle torso",
-        MIDDLE_TORSO_MASS_KG,
-        MIDDLE_TORSO_LENGTH_M,
-        MIDDLE_TORSO_WIDTH_M,
-        MIDDLE_TORSO_THICKNESS_M,
-    ),
-    torso_row(
-        "lower torso",
-        LOWER_TORSO_MASS_KG,
-        LOWER_TORSO_LENGTH_M,
-        LOWER_TORSO_WIDTH_M,
-        LOWER_TORSO_THICKNESS_M,
-    ),
+    torso_row("upper torso", UPPER_TORSO_MASS_KG, UPPER_TORSO_LENGTH_M, UPPER_TORSO_WIDTH_M, UPPER_TORSO_THICKNESS_M),
+    torso_row("middle torso", MIDDLE_TORSO_MASS_KG, MIDDLE_TORSO_LENGTH_M, MIDDLE_TORSO_WIDTH_M, MIDDLE_TORSO_THICKNESS_M),
+    torso_row("lower torso", LOWER_TORSO_MASS_KG, LOWER_TORSO_LENGTH_M, LOWER_TORSO_WIDTH_M, LOWER_TORSO_THICKNESS_M),
     limb_row("upper leg", UPPER_LEG_MASS_KG, UPPER_LEG_LENGTH_M, UPPER_LEG_RADIUS_M),
     limb_row("lower leg", LOWER_LEG_MASS_KG, LOWER_LEG_LENGTH_M, LOWER_LEG_RADIUS_M),
     mass_row("foot", FOOT_MASS_KG, 2),
@@ -276,10 +242,7 @@ pub struct HumanParams {
 impl Default for HumanParams {
     /// The paper's subject: 1.83 m, 81 kg.
     fn default() -> Self {
-        HumanParams {
-            stature_m: REFERENCE_STATURE_M,
-            mass_kg: REFERENCE_MASS_KG,
-        }
+        HumanParams { stature_m: REFERENCE_STATURE_M, mass_kg: REFERENCE_MASS_KG }
     }
 }
 
@@ -314,11 +277,7 @@ fn check_range(field: &str, value: f64, (lo, hi): (f64, f64), unit: &str) -> Res
     if (lo..=hi).contains(&value) {
         Ok(())
     } else {
-        Err(Error::model(
-            ORIGIN,
-            field,
-            format!("must be between {lo} and {hi} {unit}, got {value} {unit}"),
-        ))
+        Err(Error::model(ORIGIN, field, format!("must be between {lo} and {hi} {unit}, got {value} {unit}")))
     }
 }
 
@@ -342,12 +301,7 @@ pub enum Structure {
 }
 
 impl Structure {
-    pub const ALL: [Structure; 4] = [
-        Structure::Sagittal,
-        Structure::FreeArms,
-        Structure::Hanging,
-        Structure::PushUp,
-    ];
+    pub const ALL: [Structure; 4] = [Structure::Sagittal, Structure::FreeArms, Structure::Hanging, Structure::PushUp];
 
     /// The structure's name as used in task files and on the command line.
     pub fn name(&self) -> &'static str {
@@ -369,11 +323,7 @@ impl Structure {
     pub fn from_name(name: &str) -> Result<Structure> {
         let wanted = name.trim().to_ascii_lowercase().replace('-', "_");
         Structure::ALL.into_iter().find(|s| s.name() == wanted).ok_or_else(|| {
-            Error::model(
-                ORIGIN,
-                "structure",
-                format!("unknown structure \"{name}\"; known: {}", Structure::names().join(", ")),
-            )
+            Error::model(ORIGIN, "structure", format!("unknown structure \"{name}\"; known: {}", Structure::names().join(", ")))
         })
     }
 
@@ -511,14 +461,7 @@ fn dof_data(dof: Dof) -> DofData {
         Dof::ToePivot => (LEFT, 0.0, 95.0, 20.0, 0.0, 0.0),
         Dof::Grip => (LEFT, -225.0, 225.0, 15.0, 0.0, 0.0),
     };
-    DofData {
-        axis,
-        lower_deg,
-        upper_deg,
-        effort,
-        stiffness,
-        damping,
-    }
+    DofData { axis, lower_deg, upper_deg, effort, stiffness, damping }
 }
 
 /// Which limb(s) a segment or joint stands for.
@@ -813,10 +756,7 @@ impl Geometry {
                 Part {
                     name,
                     inertia: Inertia::new(HEAD_MASS_KG * m, centre, sphere_inertia(HEAD_MASS_KG * m, r)),
-                    shapes: vec![Shape::Sphere {
-                        center: centre,
-                        radius: r,
-                    }],
+                    shapes: vec![Shape::Sphere { center: centre, radius: r }],
                     anchor: Vec3::new(0.0, 0.0, self.z_head),
                 }
             }
@@ -859,11 +799,7 @@ fn limb(name: String, mass: f64, radius: f64, top: Vec3, bottom: Vec3) -> Part {
     Part {
         name,
         inertia: Inertia::new(mass, centre, cylinder_inertia(mass, radius, length)),
-        shapes: vec![Shape::Cylinder {
-            origin: Transform::from_translation(centre),
-            radius,
-            length,
-        }],
+        shapes: vec![Shape::Cylinder { origin: Transform::from_translation(centre), radius, length }],
         anchor: top,
     }
 }
@@ -873,10 +809,7 @@ fn block(name: String, mass: f64, size: Vec3, centre: Vec3, anchor: Vec3) -> Par
     Part {
         name,
         inertia: Inertia::new(mass, centre, box_inertia(mass, size)),
-        shapes: vec![Shape::Box {
-            origin: Transform::from_translation(centre),
-            size,
-        }],
+        shapes: vec![Shape::Box { origin: Transform::from_translation(centre), size }],
         anchor,
     }
 }
@@ -885,24 +818,12 @@ fn block(name: String, mass: f64, size: Vec3, centre: Vec3, anchor: Vec3) -> Par
 fn shifted(shape: &Shape, d: Vec3) -> Shape {
     let move_origin = |o: &Transform| Transform::new(o.rotation, o.translation + d);
     match shape {
-        Shape::Box { origin, size } => Shape::Box {
-            origin: move_origin(origin),
-            size: *size,
-        },
-        Shape::Cylinder { origin, radius, length } => Shape::Cylinder {
-            origin: move_origin(origin),
-            radius: *radius,
-            length: *length,
-        },
-        Shape::Capsule { a, b, radius } => Shape::Capsule {
-            a: a + d,
-            b: b + d,
-            radius: *radius,
-        },
-        Shape::Sphere { center, radius } => Shape::Sphere {
-            center: center + d,
-            radius: *radius,
-        },
+        Shape::Box { origin, size } => Shape::Box { origin: move_origin(origin), size: *size },
+        Shape::Cylinder { origin, radius, length } => {
+            Shape::Cylinder { origin: move_origin(origin), radius: *radius, length: *length }
+        }
+        Shape::Capsule { a, b, radius } => Shape::Capsule { a: a + d, b: b + d, radius: *radius },
+        Shape::Sphere { center, radius } => Shape::Sphere { center: center + d, radius: *radius },
     }
 }
 
@@ -933,13 +854,7 @@ struct JointSpec {
 
 /// A 1-DOF pitch joint of lumped limbs or of the spine, on the midline at height `z` (m).
 fn pitch(name: &'static str, dof: Dof, way: Way, z: f64) -> JointSpec {
-    JointSpec {
-        name,
-        dofs: vec![("", dof)],
-        side: Side::Both,
-        way,
-        at: Vec3::new(0.0, 0.0, z),
-    }
+    JointSpec { name, dofs: vec![("", dof)], side: Side::Both, way, at: Vec3::new(0.0, 0.0, z) }
 }
 
 /// Builds a model whose body frames are all world-aligned in the standing zero pose, so every joint
@@ -955,11 +870,7 @@ impl<'a> Builder<'a> {
     /// A model whose root body carries `parts` and whose world origin is the standing-coordinates point
     /// `origin` (m).
     fn new(g: &'a Geometry, structure: Structure, root: &str, origin: Vec3, parts: Vec<Part>) -> Self {
-        let mut b = Builder {
-            g,
-            model: Model::new(format!("human_{}", structure.name()), root),
-            origins: vec![origin],
-        };
+        let mut b = Builder { g, model: Model::new(format!("human_{}", structure.name()), root), origins: vec![origin] };
         let (body, frames) = b.body(root, origin, parts);
         b.model.bodies[0] = body;
         b.add_frames(0, frames);
@@ -981,11 +892,7 @@ impl<'a> Builder<'a> {
         if inertia.mass > 0.0 {
             inertia.com -= origin;
         }
-        let body = Body {
-            name: name.to_string(),
-            inertia,
-            shapes,
-        };
+        let body = Body { name: name.to_string(), inertia, shapes };
         (body, frames)
     }
 
@@ -993,29 +900,14 @@ impl<'a> Builder<'a> {
     fn add(&mut self, parent: usize, joint: JointSpec, body: &str, parts: Vec<Part>) -> usize {
         let name = format!("{}{}", joint.side.prefix(), joint.name);
         let placement = Transform::from_translation(joint.at - self.origins[parent]);
-        let mut axes: Vec<_> = joint
-            .dofs
-            .iter()
-            .map(|&(label, dof)| self.axis(dof, joint.side, joint.way, label))
-            .collect();
+        let mut axes: Vec<_> = joint.dofs.iter().map(|&(label, dof)| self.axis(dof, joint.side, joint.way, label)).collect();
         if joint.way == Way::Inward {
             axes.reverse();
         }
         let (body, frames) = self.body(body, joint.at, parts);
         let index = if let [(_, axis, limits, passive)] = axes[..] {
-            self.model.add_body(
-                Joint {
-                    name,
-                    kind: JointKind::Revolute,
-                    parent,
-                    placement,
-                    axis,
-                    limits,
-                    passive,
-                    group: None,
-                },
-                body,
-            )
+            self.model
+                .add_body(Joint { name, kind: JointKind::Revolute, parent, placement, axis, limits, passive, group: None }, body)
         } else {
             self.model.add_anatomical_joint(&name, parent, placement, &axes, body)
         };
@@ -1040,11 +932,7 @@ impl<'a> Builder<'a> {
             velocity: f64::INFINITY,
             effort: d.effort * strength,
         };
-        let passive = Passive {
-            stiffness: d.stiffness * strength,
-            rest: 0.0,
-            damping: d.damping * strength,
-        };
+        let passive = Passive { stiffness: d.stiffness * strength, rest: 0.0, damping: d.damping * strength };
         (label, axis, limits, passive)
     }
 
@@ -1113,13 +1001,7 @@ fn upper_body_parts(g: &Geometry) -> Vec<Part> {
 
 /// Root `feet` welded to the floor, world origin on the floor below the ankles; limbs lumped.
 fn sagittal(g: &Geometry) -> Model {
-    let mut b = Builder::new(
-        g,
-        Structure::Sagittal,
-        "feet",
-        Vec3::zeros(),
-        vec![g.part(Seg::Foot, Side::Both)],
-    );
+    let mut b = Builder::new(g, Structure::Sagittal, "feet", Vec3::zeros(), vec![g.part(Seg::Foot, Side::Both)]);
     b.foot_frames(0);
     let trunk = b.legs_and_trunk(0);
     let forearms = b.lumped_arms(trunk);
@@ -1144,30 +1026,16 @@ fn free_arms(g: &Geometry) -> Model {
     b.head_frames(torso);
     for side in [Side::Left, Side::Right] {
         let y = side.y(g.y_shoulder);
-        let joint = |name, dofs, z| JointSpec {
-            name,
-            dofs,
-            side,
-            way: Way::Outward,
-            at: Vec3::new(0.0, y, z),
-        };
+        let joint = |name, dofs, z| JointSpec { name, dofs, side, way: Way::Outward, at: Vec3::new(0.0, y, z) };
         // Table I's shoulder, Rot(z)·Rot(y)·Rot(x): rotation, then flexion, then abduction.
-        let shoulder = vec![
-            ("z", Dof::ShoulderRotation),
-            ("y", Dof::ShoulderFlexion),
-            ("x", Dof::ShoulderAbduction),
-        ];
+        let shoulder = vec![("z", Dof::ShoulderRotation), ("y", Dof::ShoulderFlexion), ("x", Dof::ShoulderAbduction)];
         let shoulder = joint("shoulder", shoulder, g.z_shoulder);
         let arm = b.add(torso, shoulder, &Seg::UpperArm.name(side), vec![g.part(Seg::UpperArm, side)]);
         let elbow = joint("elbow", vec![("", Dof::Elbow)], g.z_elbow);
         let forearm = b.add(arm, elbow, &Seg::LowerArm.name(side), vec![g.part(Seg::LowerArm, side)]);
         let wrist = joint("wrist", vec![("", Dof::Wrist)], g.z_wrist);
         let palm = b.add(forearm, wrist, &Seg::Palm.name(side), vec![g.part(Seg::Palm, side)]);
-        b.frame(
-            &format!("{}hand", side.prefix()),
-            palm,
-            g.palm_centre() + Vec3::new(0.0, y, 0.0),
-        );
+        b.frame(&format!("{}hand", side.prefix()), palm, g.palm_centre() + Vec3::new(0.0, y, 0.0));
     }
     b.model
 }
@@ -1183,10 +1051,7 @@ fn hanging(g: &Geometry) -> Model {
         radius: BAR_RADIUS_M * g.s,
         length: BAR_LENGTH_M * g.s,
     });
-    let grip_joint = JointSpec {
-        at: grip,
-        ..pitch("grip", Dof::Grip, Way::Outward, 0.0)
-    };
+    let grip_joint = JointSpec { at: grip, ..pitch("grip", Dof::Grip, Way::Outward, 0.0) };
     let palms = b.add(0, grip_joint, "palms", vec![g.part(Seg::Palm, both)]);
     b.frame("hands", palms, grip);
     let wrist = pitch("wrist", Dof::Wrist, Way::Inward, g.z_wrist);
@@ -1202,12 +1067,7 @@ fn hanging(g: &Geometry) -> Model {
     let thighs = b.add(pelvis, hip, "upper_legs", vec![g.part(Seg::UpperLeg, both)]);
     // No ankle here: the feet ride on the shanks.
     let knee = pitch("knee", Dof::Knee, Way::Outward, g.z_knee);
-    let shanks = b.add(
-        thighs,
-        knee,
-        "lower_legs",
-        vec![g.part(Seg::LowerLeg, both), g.part(Seg::Foot, both)],
-    );
+    let shanks = b.add(thighs, knee, "lower_legs", vec![g.part(Seg::LowerLeg, both), g.part(Seg::Foot, both)]);
     b.foot_frames(shanks);
     b.model
 }
@@ -1216,10 +1076,7 @@ fn hanging(g: &Geometry) -> Model {
 /// forearms, cut at the wrist (section 7.3).
 fn push_up(g: &Geometry) -> Model {
     let mut b = Builder::new(g, Structure::PushUp, "floor", g.toe(), vec![]);
-    let toe = JointSpec {
-        at: g.toe(),
-        ..pitch("toe_pivot", Dof::ToePivot, Way::Outward, 0.0)
-    };
+    let toe = JointSpec { at: g.toe(), ..pitch("toe_pivot", Dof::ToePivot, Way::Outward, 0.0) };
     let feet = b.add(0, toe, "feet", vec![g.part(Seg::Foot, Side::Both)]);
     b.foot_frames(feet);
     let trunk = b.legs_and_trunk(feet);

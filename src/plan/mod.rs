@@ -218,7 +218,7 @@ pub fn plan(spec: &Spec, solver: SolverKind, settings: &Settings, observer: &mut
     let initial_objective = objective_at(&mut problem, &x0).map_err(|e| Error::task("task", "initial guess", e))?;
     let started = Instant::now();
     let outcome = match solver {
-        SolverKind::Structured => solve::AugLagLevenbergMarquardt::default().solve(&mut problem, &x0, settings, observer),
+        SolverKind::Structured => solve::AugLagLevenbergMarquardt.solve(&mut problem, &x0, settings, observer),
         SolverKind::AuglagBfgs => solve::AugLagBfgs::default().solve(&mut problem, &x0, settings, observer),
     };
     let solve_seconds = started.elapsed().as_secs_f64();

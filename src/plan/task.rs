@@ -502,7 +502,7 @@ pub fn resolve(file: &TaskFile, base: &Path, origin: &str) -> Result<Spec> {
         let field = format!("constraints.position_limit.{name}");
         let i = dof(&model, name, &field, origin)?;
         let (lo, hi) = (to_si(&model, i, lim[0]), to_si(&model, i, lim[1]));
-        if !(lo <= hi) {
+        if lo.is_nan() || hi.is_nan() || lo > hi {
             return Err(Error::task(origin, field, format!("lower {} is above upper {}", lim[0], lim[1])));
         }
         model.joints[i + 1].limits.lower = lo;
@@ -511,7 +511,7 @@ pub fn resolve(file: &TaskFile, base: &Path, origin: &str) -> Result<Spec> {
     for (name, lim) in &c.torque_limit {
         let field = format!("constraints.torque_limit.{name}");
         let i = dof(&model, name, &field, origin)?;
-        if !(*lim > 0.0) {
+        if lim.is_nan() || *lim <= 0.0 {
             return Err(Error::task(origin, field, format!("must be a positive torque in N·m, got {lim}")));
         }
         model.joints[i + 1].limits.effort = *lim;

@@ -90,6 +90,26 @@ impl Layout {
     }
 }
 
+/// A row's derivatives with respect to a node's `q`, `q̇`, `q̈` (each `nv`) and contact forces `λ̃`.
+struct Derivatives<'a> {
+    q: &'a [f64],
+    v: &'a [f64],
+    a: &'a [f64],
+    lambda: Option<&'a [f64]>,
+}
+
+impl NodeWork {
+    /// The derivatives of active torque `l` at this node.
+    fn torque_row(&self, l: usize, nv: usize, nl: usize) -> Derivatives<'_> {
+        Derivatives {
+            q: &self.dq[l * nv..(l + 1) * nv],
+            v: &self.dv[l * nv..(l + 1) * nv],
+            a: &self.da[l * nv..(l + 1) * nv],
+            lambda: (nl > 0).then(|| &self.dl[l * nl..(l + 1) * nl]),
+        }
+    }
+}
+
 /// One inequality row at a node.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum IneqRow {
@@ -395,16 +415,8 @@ impl<'s> Transcription<'s> {
 
     /// Writes a row's values over the pattern `motion ++ lambda` from its derivatives with respect to the
     /// node's `q`, `q̇`, `q̈` (each `nv`) and `λ̃` (`n_lambda`), by the chain rule of eq. 33, scaled by `s`.
-    fn chain_rule(
-        layout: &Layout,
-        basis: &BasisAt,
-        s: f64,
-        d_q: &[f64],
-        d_v: &[f64],
-        d_a: &[f64],
-        d_l: Option<&[f64]>,
-        out: &mut [f64],
-    ) {
+    fn chain_rule(layout: &Layout, basis: &BasisAt, s: f64, d: Derivatives, out: &mut [f64]) {
+        let Derivatives { q: d_q, v: d_v, a: d_a, lambda: d_l } = d;
         let mut pos = 0;
         for a in 0..4 {
             if layout.fixed[basis.first + a] {
@@ -520,18 +532,7 @@ impl Problem for Transcription<'_> {
                 let s = sw * self.sqrt_weights[l];
                 out.r[k * nv + l] = s * w.tau[l];
                 if want_jac {
-                    let dl = (nl > 0).then(|| &w.dl[l * nl..(l + 1) * nl]);
-                    let vals = out.jr.row_values_mut(k * nv + l);
-                    Self::chain_rule(
-                        &self.layout,
-                        &basis,
-                        s,
-                        &w.dq[l * nv..(l + 1) * nv],
-                        &w.dv[l * nv..(l + 1) * nv],
-                        &w.da[l * nv..(l + 1) * nv],
-                        dl,
-                        vals,
-                    );
+                    Self::chain_rule(&self.layout, &basis, s, w.torque_row(l, nv, nl), out.jr.row_values_mut(k * nv + l));
                 }
             }
             // Contacts: Φ = Eᵀ(p − target).
@@ -548,7 +549,8 @@ impl Problem for Transcription<'_> {
                         for (col, &dof) in info.path.iter().enumerate() {
                             d_q[dof] = e.dot(&w.jac[c][col]);
                         }
-                        Self::chain_rule(&self.layout, &basis, 1.0, d_q, zeros, zeros, None, out.jh.row_values_mut(row));
+                        let d = Derivatives { q: d_q, v: zeros, a: zeros, lambda: None };
+                        Self::chain_rule(&self.layout, &basis, 1.0, d, out.jh.row_values_mut(row));
                     }
                 }
             }
@@ -576,17 +578,7 @@ impl Problem for Transcription<'_> {
                         let sign = if upper { 1.0 } else { -1.0 };
                         out.g[gi] = sign * w.tau[i] - self.effort[i];
                         if want_jac {
-                            let dl = (nl > 0).then(|| &w.dl[i * nl..(i + 1) * nl]);
-                            Self::chain_rule(
-                                &self.layout,
-                                &basis,
-                                sign,
-                                &w.dq[i * nv..(i + 1) * nv],
-                                &w.dv[i * nv..(i + 1) * nv],
-                                &w.da[i * nv..(i + 1) * nv],
-                                dl,
-                                out.jg.row_values_mut(gi),
-                            );
+                            Self::chain_rule(&self.layout, &basis, sign, w.torque_row(i, nv, nl), out.jg.row_values_mut(gi));
                         }
                     }
                     IneqRow::Push(c) | IneqRow::Friction(c, _) => {
@@ -638,7 +630,8 @@ impl Problem for Transcription<'_> {
                                 d_l[m] = dot6(&c, &w.w_dl[m]);
                             }
                             let d_l = (nl > 0).then_some(&d_l[..nl]);
-                            Self::chain_rule(&self.layout, &basis, 1.0, d_q, d_v, d_a, d_l, out.jg.row_values_mut(gi));
+                            let d = Derivatives { q: d_q, v: d_v, a: d_a, lambda: d_l };
+                            Self::chain_rule(&self.layout, &basis, 1.0, d, out.jg.row_values_mut(gi));
                         }
                     }
                 }

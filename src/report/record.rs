@@ -113,7 +113,11 @@ pub fn load_plan_dir(dir: &Path) -> Result<(Model, PlanRecord)> {
     let record: PlanRecord = serde_json::from_str(&text)
         .map_err(|e| Error::input(plan_path.display().to_string(), format!("line {}", e.line()), e.to_string()))?;
     if record.format != FORMAT {
-        return Err(Error::input(plan_path.display().to_string(), "format", format!("expected \"{FORMAT}\", found \"{}\"", record.format)));
+        return Err(Error::input(
+            plan_path.display().to_string(),
+            "format",
+            format!("expected \"{FORMAT}\", found \"{}\"", record.format),
+        ));
     }
     let model = figure::load(&dir.join("model.figure.toml"))?;
     if model.joint_names() != record.joint_names.iter().map(String::as_str).collect::<Vec<_>>() {

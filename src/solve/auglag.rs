@@ -152,24 +152,15 @@ impl<'a> AugmentedLagrangian<'a> {
             self.eval.jh.fill_zero();
             self.eval.jg.fill_zero();
         }
-        self.problem
-            .evaluate(x, want_jac, &mut self.eval)
-            .map_err(EvalError::Failed)?;
+        self.problem.evaluate(x, want_jac, &mut self.eval).map_err(EvalError::Failed)?;
         let d = self.dims;
         if self.eval.r.len() != d.n_res || self.eval.h.len() != d.n_eq || self.eval.g.len() != d.n_ineq {
             return Err(EvalError::Failed("evaluate changed the length of r, h or g".into()));
         }
         if let Some(what) = self.eval.first_non_finite(want_jac) {
-            return Err(EvalError::NonFinite(format!(
-                "non-finite {what} (evaluation {})",
-                self.evaluations
-            )));
+            return Err(EvalError::NonFinite(format!("non-finite {what} (evaluation {})", self.evaluations)));
         }
-        self.evaluated = if want_jac {
-            Evaluated::ValuesAndJacobians
-        } else {
-            Evaluated::Values
-        };
+        self.evaluated = if want_jac { Evaluated::ValuesAndJacobians } else { Evaluated::Values };
         Ok(())
     }
 
@@ -198,16 +189,8 @@ impl<'a> AugmentedLagrangian<'a> {
     /// `L_A` of eq. 10 at the last evaluated point.
     pub(crate) fn value(&self) -> f64 {
         let wp = self.penalty;
-        let ineq: f64 = (0..self.dims.n_ineq)
-            .map(|i| self.psi(i))
-            .zip(&self.lambda)
-            .map(|(p, l)| l * p + wp * p * p)
-            .sum();
-        let eq: f64 = (0..self.dims.n_eq)
-            .map(|k| self.h_scaled(k))
-            .zip(&self.mu)
-            .map(|(h, m)| m * h + wp * h * h)
-            .sum();
+        let ineq: f64 = (0..self.dims.n_ineq).map(|i| self.psi(i)).zip(&self.lambda).map(|(p, l)| l * p + wp * p * p).sum();
+        let eq: f64 = (0..self.dims.n_eq).map(|k| self.h_scaled(k)).zip(&self.mu).map(|(h, m)| m * h + wp * h * h).sum();
         self.objective() + ineq + eq
     }
 
@@ -223,11 +206,7 @@ impl<'a> AugmentedLagrangian<'a> {
         for i in 0..self.dims.n_ineq {
             let g = self.eval.g[i] / self.scales.ineq[i];
             let active = g > -self.lambda[i] / two_wp;
-            self.coef_g[i] = if active {
-                (self.lambda[i] + two_wp * g) / self.scales.ineq[i]
-            } else {
-                0.0
-            };
+            self.coef_g[i] = if active { (self.lambda[i] + two_wp * g) / self.scales.ineq[i] } else { 0.0 };
         }
         for k in 0..self.dims.n_eq {
             self.coef_h[k] = (self.mu[k] + two_wp * self.h_scaled(k)) / self.scales.eq[k];
@@ -245,11 +224,7 @@ impl<'a> AugmentedLagrangian<'a> {
         for i in 0..self.dims.n_ineq {
             let g = self.eval.g[i] / self.scales.ineq[i];
             let active = g > -self.lambda[i] / two_wp;
-            self.coef_g[i] = if active {
-                two_wp / (self.scales.ineq[i] * self.scales.ineq[i])
-            } else {
-                0.0
-            };
+            self.coef_g[i] = if active { two_wp / (self.scales.ineq[i] * self.scales.ineq[i]) } else { 0.0 };
         }
         for k in 0..self.dims.n_eq {
             self.coef_h[k] = two_wp / (self.scales.eq[k] * self.scales.eq[k]);
@@ -265,10 +240,8 @@ impl<'a> AugmentedLagrangian<'a> {
     fn violation(&self) -> (f64, Option<(ConstraintKind, usize)>) {
         let eq = (0..self.dims.n_eq).map(|k| (self.h_scaled(k).abs(), (ConstraintKind::Equality, k)));
         let ineq = (0..self.dims.n_ineq).map(|i| (self.eval.g[i] / self.scales.ineq[i], (ConstraintKind::Inequality, i)));
-        let (largest, worst) = eq.chain(ineq).fold(
-            (f64::NEG_INFINITY, None),
-            |(m, w), (v, c)| if v > m { (v, Some(c)) } else { (m, w) },
-        );
+        let (largest, worst) =
+            eq.chain(ineq).fold((f64::NEG_INFINITY, None), |(m, w), (v, c)| if v > m { (v, Some(c)) } else { (m, w) });
         // Violations are non-negative; with no constraints at all the violation is 0.
         (largest.max(0.0), worst)
     }
@@ -306,20 +279,14 @@ impl<'a> AugmentedLagrangian<'a> {
     /// The convergence test of [`super::solver`] at the last evaluated point, with the estimates (`next`)
     /// or the current multipliers.
     fn assess(&mut self, next: bool, settings: &Settings) -> Assessment {
-        let (lambda, mu) = if next {
-            (&self.lambda_next, &self.mu_next)
-        } else {
-            (&self.lambda, &self.mu)
-        };
+        let (lambda, mu) = if next { (&self.lambda_next, &self.mu_next) } else { (&self.lambda, &self.mu) };
         for ((c, l), s) in self.coef_g.iter_mut().zip(lambda).zip(&self.scales.ineq) {
             *c = l / s;
         }
         for ((c, m), s) in self.coef_h.iter_mut().zip(mu).zip(&self.scales.eq) {
             *c = m / s;
         }
-        let complementarity = (0..self.dims.n_ineq)
-            .map(|i| self.coef_g[i] * (-self.eval.g[i]).max(0.0))
-            .fold(0.0, f64::max);
+        let complementarity = (0..self.dims.n_ineq).map(|i| self.coef_g[i] * (-self.eval.g[i]).max(0.0)).fold(0.0, f64::max);
         let grad = &mut self.gradient_work;
         self.eval.jr.tr_mul_vec(&self.eval.r, grad);
         self.eval.jg.tr_mul_vec_add(1.0, &self.coef_g, grad);
@@ -348,11 +315,7 @@ impl<'a> AugmentedLagrangian<'a> {
     pub(crate) fn iteration_done(&mut self, iterate: &Iterate<'_>) -> bool {
         let w = &mut self.stall;
         if iterate.iteration == 0 {
-            *w = StallWatch {
-                gradient_norm: iterate.gradient_norm,
-                value: iterate.f,
-                since: 0,
-            };
+            *w = StallWatch { gradient_norm: iterate.gradient_norm, value: iterate.f, since: 0 };
         } else {
             self.iterations += 1;
             let gradient_progress = iterate.gradient_norm < 0.5 * w.gradient_norm;
@@ -423,28 +386,16 @@ fn validate(dims: Dims, x0: &[f64], settings: &Settings) -> Result<(), String> {
     }
     let positive = |v: f64| v.is_finite() && v > 0.0;
     let checks = [
-        (
-            positive(settings.tol_stationarity),
-            "tol_stationarity must be finite and positive",
-        ),
+        (positive(settings.tol_stationarity), "tol_stationarity must be finite and positive"),
         (positive(settings.tol_violation), "tol_violation must be finite and positive"),
         (positive(settings.max_penalty), "max_penalty must be finite and positive"),
-        (
-            settings.penalty_growth.is_finite() && settings.penalty_growth > 1.0,
-            "penalty_growth must be finite and > 1",
-        ),
+        (settings.penalty_growth.is_finite() && settings.penalty_growth > 1.0, "penalty_growth must be finite and > 1"),
         (
             settings.violation_decrease > 0.0 && settings.violation_decrease < 1.0,
             "violation_decrease must lie strictly between 0 and 1",
         ),
-        (
-            settings.initial_penalty.is_none_or(positive),
-            "initial_penalty must be finite and positive",
-        ),
-        (
-            settings.time_limit.is_none_or(|t| t.is_finite() && t >= 0.0),
-            "time_limit must be finite and non-negative",
-        ),
+        (settings.initial_penalty.is_none_or(positive), "initial_penalty must be finite and positive"),
+        (settings.time_limit.is_none_or(|t| t.is_finite() && t >= 0.0), "time_limit must be finite and non-negative"),
     ];
     if let Some((_, message)) = checks.iter().find(|(ok, _)| !ok) {
         return Err((*message).into());
@@ -535,11 +486,7 @@ impl<'a> AugmentedLagrangian<'a> {
             deadline: settings.time_limit.map(|t| started + Duration::from_secs_f64(t)),
             max_iterations: settings.max_iterations,
             limit_hit: None,
-            stall: StallWatch {
-                gradient_norm: f64::INFINITY,
-                value: f64::INFINITY,
-                since: 0,
-            },
+            stall: StallWatch { gradient_norm: f64::INFINITY, value: f64::INFINITY, since: 0 },
             stall_window: usize::MAX,
         })
     }
@@ -562,12 +509,7 @@ pub(crate) fn solve_with<I: InnerSolver>(
     al.stall_window = inner.stall_window();
     let x = x0.to_vec();
     if let Err(e) = al.evaluate(&x, true) {
-        return al.finish(
-            x,
-            StopReason::EvaluationError(format!("at the starting point: {e}")),
-            None,
-            settings,
-        );
+        return al.finish(x, StopReason::EvaluationError(format!("at the starting point: {e}")), None, settings);
     }
     if settings.initial_penalty.is_none() {
         al.penalty = automatic_penalty(&al.eval, &al.scales);
@@ -644,10 +586,8 @@ impl AugmentedLagrangian<'_> {
             }
             if assessment.violation > settings.tol_violation && progress > settings.violation_decrease * previous_progress {
                 if self.penalty >= settings.max_penalty {
-                    let reason = StopReason::Infeasible {
-                        worst: self.worst_name(assessment.worst),
-                        violation: assessment.violation,
-                    };
+                    let reason =
+                        StopReason::Infeasible { worst: self.worst_name(assessment.worst), violation: assessment.violation };
                     return self.finish(x, reason, last, settings);
                 }
                 self.penalty = (self.penalty * settings.penalty_growth).min(settings.max_penalty);
@@ -716,11 +656,7 @@ impl InnerSolver for BfgsInner {
         tolerance: f64,
         max_iterations: usize,
     ) -> InnerReport {
-        let settings = BfgsSettings {
-            max_iterations,
-            gradient_tolerance: tolerance,
-            line_search: self.line_search,
-        };
+        let settings = BfgsSettings { max_iterations, gradient_tolerance: tolerance, line_search: self.line_search };
         let report = self.bfgs.minimise(al, x, &settings);
         let status = match report.status {
             BfgsStatus::Converged => InnerStatus::Converged,
@@ -729,10 +665,7 @@ impl InnerSolver for BfgsInner {
             BfgsStatus::Stopped => InnerStatus::Stopped,
             BfgsStatus::EvaluationError(m) => InnerStatus::EvaluationError(m),
         };
-        InnerReport {
-            status,
-            iterations: report.iterations,
-        }
+        InnerReport { status, iterations: report.iterations }
     }
 
     /// BFGS may need a few times `n` steps to learn the curvature, with little visible progress meanwhile.
@@ -751,9 +684,6 @@ pub struct AugLagBfgs {
 impl Solver for AugLagBfgs {
     fn solve(&self, problem: &mut dyn Problem, x0: &[f64], settings: &Settings, observer: &mut dyn FnMut(&Progress)) -> Outcome {
         let line_search = self.line_search;
-        solve_with(problem, x0, settings, observer, |eval| BfgsInner {
-            bfgs: Bfgs::new(eval.jr.ncols()),
-            line_search,
-        })
+        solve_with(problem, x0, settings, observer, |eval| BfgsInner { bfgs: Bfgs::new(eval.jr.ncols()), line_search })
     }
 }

@@ -22,11 +22,7 @@ pub struct BfgsSettings {
 
 impl Default for BfgsSettings {
     fn default() -> Self {
-        BfgsSettings {
-            max_iterations: 1000,
-            gradient_tolerance: 1e-8,
-            line_search: LineSearch::default(),
-        }
+        BfgsSettings { max_iterations: 1000, gradient_tolerance: 1e-8, line_search: LineSearch::default() }
     }
 }
 
@@ -103,33 +99,18 @@ impl Bfgs {
     /// If `x.len()` differs from the dimension given to [`Bfgs::new`].
     pub fn minimise(&mut self, objective: &mut dyn Objective, x: &mut [f64], settings: &BfgsSettings) -> BfgsReport {
         assert_eq!(x.len(), self.n);
-        let mut report = BfgsReport {
-            status: BfgsStatus::Converged,
-            iterations: 0,
-            evaluations: 1,
-            f: f64::NAN,
-            gradient_norm: f64::NAN,
-        };
+        let mut report =
+            BfgsReport { status: BfgsStatus::Converged, iterations: 0, evaluations: 1, f: f64::NAN, gradient_norm: f64::NAN };
         let mut f = match objective.evaluate(x, &mut self.gradient) {
             Ok(f) if f.is_finite() && self.gradient.iter().all(|g| g.is_finite()) => f,
-            Ok(_) => {
-                return self.stop(
-                    report,
-                    BfgsStatus::EvaluationError("non-finite value or gradient at the start".into()),
-                )
-            }
+            Ok(_) => return self.stop(report, BfgsStatus::EvaluationError("non-finite value or gradient at the start".into())),
             Err(e) => return self.stop(report, BfgsStatus::EvaluationError(e.to_string())),
         };
         loop {
             let gnorm = norm_inf(&self.gradient);
             report.f = f;
             report.gradient_norm = gnorm;
-            let go_on = objective.iteration_done(&Iterate {
-                iteration: report.iterations,
-                x,
-                f,
-                gradient_norm: gnorm,
-            });
+            let go_on = objective.iteration_done(&Iterate { iteration: report.iterations, x, f, gradient_norm: gnorm });
             if gnorm <= settings.gradient_tolerance * objective.gradient_scale() {
                 return self.stop(report, BfgsStatus::Converged);
             }
@@ -192,14 +173,8 @@ impl Bfgs {
     fn search(&mut self, objective: &mut dyn Objective, x: &[f64], f: f64, settings: &BfgsSettings) -> LineSearchResult {
         // A quasi-Newton step has a natural length of 1; a steepest-descent step does not, so the first one
         // is capped at unit length in the ∞-norm.
-        let alpha0 = if self.updated {
-            1.0
-        } else {
-            (1.0 / norm_inf(&self.direction)).min(1.0)
-        };
-        settings
-            .line_search
-            .search(objective, x, f, &self.gradient, &self.direction, alpha0, &mut self.work)
+        let alpha0 = if self.updated { 1.0 } else { (1.0 / norm_inf(&self.direction)).min(1.0) };
+        settings.line_search.search(objective, x, f, &self.gradient, &self.direction, alpha0, &mut self.work)
     }
 
     /// The BFGS update of `H` with the pair `(s, y)`, skipped when `sᵀy` is not safely positive.
@@ -276,16 +251,10 @@ mod tests {
         for start in [[-1.2, 1.0], [2.0, -1.5], [0.0, 0.0]] {
             let mut x = start;
             let mut f = Rosenbrock { evaluations: 0 };
-            let settings = BfgsSettings {
-                gradient_tolerance: 1e-10,
-                ..BfgsSettings::default()
-            };
+            let settings = BfgsSettings { gradient_tolerance: 1e-10, ..BfgsSettings::default() };
             let report = minimise(&mut f, &mut x, &settings);
             assert_eq!(report.status, BfgsStatus::Converged, "from {start:?}: {report:?}");
-            assert!(
-                (x[0] - 1.0).abs() < 1e-8 && (x[1] - 1.0).abs() < 1e-8,
-                "from {start:?}: {x:?}"
-            );
+            assert!((x[0] - 1.0).abs() < 1e-8 && (x[1] - 1.0).abs() < 1e-8, "from {start:?}: {x:?}");
             assert!(report.iterations < 100, "{report:?}");
             assert_eq!(report.evaluations, f.evaluations);
         }
@@ -309,13 +278,7 @@ mod tests {
     #[test]
     fn quadratic_solution_and_stop_reasons() {
         let n = 20;
-        let a = nalgebra::DMatrix::from_fn(n, n, |i, j| {
-            if i == j {
-                4.0 + i as f64
-            } else {
-                1.0 / (1.0 + (i + j) as f64)
-            }
-        });
+        let a = nalgebra::DMatrix::from_fn(n, n, |i, j| if i == j { 4.0 + i as f64 } else { 1.0 / (1.0 + (i + j) as f64) });
         let b = nalgebra::DVector::from_fn(n, |i, _| (i as f64).cos());
         let expect = a.clone().cholesky().unwrap().solve(&b);
         let mut q = Quadratic { a, b };
@@ -325,10 +288,7 @@ mod tests {
         assert!((nalgebra::DVector::from_column_slice(&x) - expect).amax() < 1e-8);
 
         let mut x = vec![0.0; n];
-        let few = BfgsSettings {
-            max_iterations: 2,
-            ..BfgsSettings::default()
-        };
+        let few = BfgsSettings { max_iterations: 2, ..BfgsSettings::default() };
         assert_eq!(minimise(&mut q, &mut x, &few).status, BfgsStatus::MaxIterations);
     }
 

@@ -85,11 +85,7 @@ enum Step {
 impl LevenbergMarquardt {
     fn new(eval: &Evaluation) -> Self {
         let n = eval.jr.ncols();
-        let bandwidth = [&eval.jr, &eval.jh, &eval.jg]
-            .iter()
-            .map(|j| j.gram_bandwidth())
-            .max()
-            .unwrap_or(0);
+        let bandwidth = [&eval.jr, &eval.jh, &eval.jg].iter().map(|j| j.gram_bandwidth()).max().unwrap_or(0);
         let gram = SymmetricMatrix::for_bandwidth(n, bandwidth);
         LevenbergMarquardt {
             factor: Cholesky::for_matrix(&gram),
@@ -107,8 +103,7 @@ impl LevenbergMarquardt {
 
     /// `JᵀJ` at the last evaluated point into `gram`, and `D` updated.
     fn assemble(&mut self, al: &mut AugmentedLagrangian<'_>) -> Result<(), String> {
-        al.gauss_newton(&mut self.gram)
-            .map_err(|e| format!("internal: Gauss–Newton assembly: {e}"))?;
+        al.gauss_newton(&mut self.gram).map_err(|e| format!("internal: Gauss–Newton assembly: {e}"))?;
         for (j, d) in self.scaling.iter_mut().enumerate() {
             *d = d.max(self.gram.diagonal(j));
         }
@@ -152,14 +147,8 @@ impl LevenbergMarquardt {
                 continue;
             }
             // Model decrease L(0) − L(δ) = −gᵀδ − ½δᵀ(JᵀJ)δ = ½ δᵀ(νDδ − g), as (JᵀJ + νD)δ = −g.
-            let predicted: f64 = 0.5
-                * self
-                    .step
-                    .iter()
-                    .zip(&self.shift)
-                    .zip(&self.gradient)
-                    .map(|((d, s), g)| d * (s * d - g))
-                    .sum::<f64>();
+            let predicted: f64 =
+                0.5 * self.step.iter().zip(&self.shift).zip(&self.gradient).map(|((d, s), g)| d * (s * d - g)).sum::<f64>();
             let mut moved = false;
             for ((xt, xi), d) in self.x_trial.iter_mut().zip(x.iter()).zip(&self.step) {
                 *xt = xi + d;
@@ -228,12 +217,7 @@ impl InnerSolver for LevenbergMarquardt {
         loop {
             // Here `al` was last evaluated at `x`.
             let gradient_norm = norm_inf(&self.gradient);
-            let go_on = al.iteration_done(&Iterate {
-                iteration: iterations,
-                x,
-                f: value,
-                gradient_norm,
-            });
+            let go_on = al.iteration_done(&Iterate { iteration: iterations, x, f: value, gradient_norm });
             if gradient_norm <= tolerance * al.gradient_scale() {
                 return report(InnerStatus::Converged, iterations);
             }

@@ -36,21 +36,12 @@ impl SymmetricMatrix {
     /// A zero matrix with half-bandwidth `bandwidth` (clamped to `n − 1`) in banded storage.
     pub fn banded(n: usize, bandwidth: usize) -> Self {
         let bandwidth = bandwidth.min(n.saturating_sub(1));
-        SymmetricMatrix {
-            n,
-            storage: Storage::Banded {
-                bandwidth,
-                band: vec![0.0; n * (bandwidth + 1)],
-            },
-        }
+        SymmetricMatrix { n, storage: Storage::Banded { bandwidth, band: vec![0.0; n * (bandwidth + 1)] } }
     }
 
     /// A zero matrix in dense storage.
     pub fn dense(n: usize) -> Self {
-        SymmetricMatrix {
-            n,
-            storage: Storage::Dense(DMatrix::zeros(n, n)),
-        }
+        SymmetricMatrix { n, storage: Storage::Dense(DMatrix::zeros(n, n)) }
     }
 
     /// Banded storage when the band covers at most half the matrix, dense otherwise.
@@ -214,10 +205,7 @@ impl Cholesky {
     /// Workspace shaped like `a` (same storage kind and band).
     pub fn for_matrix(a: &SymmetricMatrix) -> Self {
         let factor = match &a.storage {
-            Storage::Banded { bandwidth, band } => Factor::Banded {
-                bandwidth: *bandwidth,
-                band: vec![0.0; band.len()],
-            },
+            Storage::Banded { bandwidth, band } => Factor::Banded { bandwidth: *bandwidth, band: vec![0.0; band.len()] },
             Storage::Dense(_) => Factor::Dense(DenseFactor::Spare(DMatrix::zeros(a.n, a.n))),
         };
         Cholesky { n: a.n, factor }
@@ -235,13 +223,7 @@ impl Cholesky {
         }
         let n = self.n;
         match (&mut self.factor, &a.storage) {
-            (
-                Factor::Banded { bandwidth, band: l },
-                Storage::Banded {
-                    bandwidth: ab,
-                    band: a_band,
-                },
-            ) => {
+            (Factor::Banded { bandwidth, band: l }, Storage::Banded { bandwidth: ab, band: a_band }) => {
                 assert_eq!(bandwidth, ab);
                 l.copy_from_slice(a_band);
                 let w = *bandwidth + 1;
@@ -309,11 +291,7 @@ fn banded_cholesky_in_place(n: usize, b: usize, l: &mut [f64]) -> Result<(), Not
         let i0 = i.saturating_sub(b);
         for k in i0..i {
             let j0 = i0.max(k.saturating_sub(b));
-            let dot: f64 = l[at(i, j0)..at(i, k)]
-                .iter()
-                .zip(&l[at(k, j0)..at(k, k)])
-                .map(|(x, y)| x * y)
-                .sum();
+            let dot: f64 = l[at(i, j0)..at(i, k)].iter().zip(&l[at(k, j0)..at(k, k)]).map(|(x, y)| x * y).sum();
             l[at(i, k)] = (l[at(i, k)] - dot) / l[at(k, k)];
         }
         let sq: f64 = l[at(i, i0)..at(i, i)].iter().map(|x| x * x).sum();
@@ -351,11 +329,7 @@ mod tests {
 
     /// A deterministic, diagonally dominant symmetric banded matrix.
     fn test_matrix(n: usize, b: usize, banded: bool) -> SymmetricMatrix {
-        let mut a = if banded {
-            SymmetricMatrix::banded(n, b)
-        } else {
-            SymmetricMatrix::dense(n)
-        };
+        let mut a = if banded { SymmetricMatrix::banded(n, b) } else { SymmetricMatrix::dense(n) };
         for i in 0..n {
             for j in i.saturating_sub(b)..i {
                 let v = ((i * 7 + j * 13) % 11) as f64 / 11.0 - 0.5;
@@ -380,11 +354,7 @@ mod tests {
             chol.solve_in_place(&mut x);
 
             let shifted = &dense + DMatrix::from_diagonal(&nalgebra::DVector::from_column_slice(&shift));
-            let expect = shifted
-                .clone()
-                .cholesky()
-                .unwrap()
-                .solve(&nalgebra::DVector::from_column_slice(&rhs));
+            let expect = shifted.clone().cholesky().unwrap().solve(&nalgebra::DVector::from_column_slice(&rhs));
             let err = (nalgebra::DVector::from_column_slice(&x) - &expect).amax();
             assert!(err < 1e-12 * (1.0 + expect.amax()), "n={n} b={b}: error {err}");
 

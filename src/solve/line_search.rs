@@ -73,11 +73,7 @@ pub struct LineSearch {
 
 impl Default for LineSearch {
     fn default() -> Self {
-        LineSearch {
-            c1: 1e-4,
-            c2: 0.9,
-            max_evaluations: 40,
-        }
+        LineSearch { c1: 1e-4, c2: 0.9, max_evaluations: 40 }
     }
 }
 
@@ -110,10 +106,7 @@ pub struct LineSearchWork {
 
 impl LineSearchWork {
     pub fn new(n: usize) -> Self {
-        LineSearchWork {
-            x: vec![0.0; n],
-            gradient: vec![0.0; n],
-        }
+        LineSearchWork { x: vec![0.0; n], gradient: vec![0.0; n] }
     }
 }
 
@@ -142,17 +135,7 @@ impl LineSearch {
         if dphi0.is_nan() || dphi0 >= 0.0 || !alpha0.is_finite() || alpha0 <= 0.0 {
             return LineSearchResult::Failed { evaluations: 0 };
         }
-        let mut s = Search {
-            params: self,
-            objective,
-            x,
-            p,
-            phi0: f0,
-            dphi0,
-            work,
-            evaluations: 0,
-            last_error: None,
-        };
+        let mut s = Search { params: self, objective, x, p, phi0: f0, dphi0, work, evaluations: 0, last_error: None };
         s.run(alpha0)
     }
 }
@@ -182,33 +165,18 @@ impl Search<'_> {
         }
         self.evaluations += 1;
         match self.objective.evaluate(&self.work.x, &mut self.work.gradient) {
-            Ok(phi) if phi.is_finite() && self.work.gradient.iter().all(|g| g.is_finite()) => Step::Trial(Trial {
-                alpha,
-                phi,
-                dphi: dot(&self.work.gradient, self.p),
-            }),
+            Ok(phi) if phi.is_finite() && self.work.gradient.iter().all(|g| g.is_finite()) => {
+                Step::Trial(Trial { alpha, phi, dphi: dot(&self.work.gradient, self.p) })
+            }
             Ok(_) => {
-                self.last_error = Some(EvalError::NonFinite(format!(
-                    "non-finite value or gradient at step {alpha:e}"
-                )));
-                Step::Trial(Trial {
-                    alpha,
-                    phi: f64::INFINITY,
-                    dphi: f64::NAN,
-                })
+                self.last_error = Some(EvalError::NonFinite(format!("non-finite value or gradient at step {alpha:e}")));
+                Step::Trial(Trial { alpha, phi: f64::INFINITY, dphi: f64::NAN })
             }
             Err(EvalError::NonFinite(m)) => {
                 self.last_error = Some(EvalError::NonFinite(m));
-                Step::Trial(Trial {
-                    alpha,
-                    phi: f64::INFINITY,
-                    dphi: f64::NAN,
-                })
+                Step::Trial(Trial { alpha, phi: f64::INFINITY, dphi: f64::NAN })
             }
-            Err(e @ EvalError::Failed(_)) => Step::Done(LineSearchResult::Error {
-                evaluations: self.evaluations,
-                error: e,
-            }),
+            Err(e @ EvalError::Failed(_)) => Step::Done(LineSearchResult::Error { evaluations: self.evaluations, error: e }),
         }
     }
 
@@ -228,20 +196,12 @@ impl Search<'_> {
     }
 
     fn accept(&self, t: &Trial) -> LineSearchResult {
-        LineSearchResult::Accepted {
-            alpha: t.alpha,
-            f: t.phi,
-            evaluations: self.evaluations,
-        }
+        LineSearchResult::Accepted { alpha: t.alpha, f: t.phi, evaluations: self.evaluations }
     }
 
     /// N&W Alg. 3.5: grow the step until an interval containing strong Wolfe points is bracketed.
     fn run(&mut self, alpha0: f64) -> LineSearchResult {
-        let mut prev = Trial {
-            alpha: 0.0,
-            phi: self.phi0,
-            dphi: self.dphi0,
-        };
+        let mut prev = Trial { alpha: 0.0, phi: self.phi0, dphi: self.dphi0 };
         let mut alpha = alpha0;
         let mut first = true;
         loop {
@@ -282,9 +242,7 @@ impl Search<'_> {
             // Cubic interpolation safeguarded to the middle 80% of the interval; bisection otherwise.
             let (a, b) = (lo.alpha.min(hi.alpha), lo.alpha.max(hi.alpha));
             let guard = 0.1 * (b - a);
-            let alpha = cubic_minimiser(&lo, &hi)
-                .filter(|t| *t >= a + guard && *t <= b - guard)
-                .unwrap_or(0.5 * (a + b));
+            let alpha = cubic_minimiser(&lo, &hi).filter(|t| *t >= a + guard && *t <= b - guard).unwrap_or(0.5 * (a + b));
             let t = match self.eval(alpha) {
                 Step::Done(r) => return r,
                 Step::Trial(t) => t,
@@ -320,13 +278,8 @@ impl Search<'_> {
 
     fn failure(&mut self) -> LineSearchResult {
         match self.last_error.take() {
-            Some(error) => LineSearchResult::Error {
-                evaluations: self.evaluations,
-                error,
-            },
-            None => LineSearchResult::Failed {
-                evaluations: self.evaluations,
-            },
+            Some(error) => LineSearchResult::Error { evaluations: self.evaluations, error },
+            None => LineSearchResult::Failed { evaluations: self.evaluations },
         }
     }
 }
@@ -381,15 +334,10 @@ mod tests {
         let p = [-g0[0], -g0[1]];
         let mut work = LineSearchWork::new(2);
         let r = ls.search(&mut Quartic, &x, f0, &g0, &p, alpha0, &mut work);
-        let LineSearchResult::Accepted { alpha, f, .. } = r else {
-            panic!("{r:?}")
-        };
+        let LineSearchResult::Accepted { alpha, f, .. } = r else { panic!("{r:?}") };
         let dphi0 = dot(&g0, &p);
         assert!(f <= f0 + ls.c1 * alpha * dphi0, "sufficient decrease, alpha0 {alpha0}");
-        assert!(
-            dot(&work.gradient, &p).abs() <= ls.c2 * dphi0.abs(),
-            "curvature, alpha0 {alpha0}"
-        );
+        assert!(dot(&work.gradient, &p).abs() <= ls.c2 * dphi0.abs(), "curvature, alpha0 {alpha0}");
         let mut g = [0.0; 2];
         assert_eq!(Quartic.evaluate(&work.x, &mut g).unwrap(), f);
         assert_eq!(work.gradient, g);
@@ -421,9 +369,7 @@ mod tests {
         let f0 = Barrier.evaluate(&[0.0], &mut g0).unwrap();
         let mut work = LineSearchWork::new(1);
         let r = LineSearch::default().search(&mut Barrier, &[0.0], f0, &g0, &[1.0], 10.0, &mut work);
-        let LineSearchResult::Accepted { f, .. } = r else {
-            panic!("{r:?}")
-        };
+        let LineSearchResult::Accepted { f, .. } = r else { panic!("{r:?}") };
         assert!(f < f0 && work.x[0] < 1.0);
     }
 

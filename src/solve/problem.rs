@@ -38,11 +38,7 @@ impl Patterns {
     /// Every row touches every column (small dense problems, tests).
     pub fn dense(dims: Dims) -> Self {
         let all = |rows: usize| (0..rows).map(|_| (0..dims.n).collect()).collect();
-        Patterns {
-            r: all(dims.n_res),
-            h: all(dims.n_eq),
-            g: all(dims.n_ineq),
-        }
+        Patterns { r: all(dims.n_res), h: all(dims.n_eq), g: all(dims.n_ineq) }
     }
 }
 
@@ -90,11 +86,7 @@ pub struct Evaluation {
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum ProblemError {
     #[error("jacobian pattern of {which}: {rows} rows, but dims say {expected}")]
-    PatternRows {
-        which: &'static str,
-        rows: usize,
-        expected: usize,
-    },
+    PatternRows { which: &'static str, rows: usize, expected: usize },
     #[error("jacobian pattern of {which}: {source}")]
     Pattern {
         which: &'static str,
@@ -110,11 +102,7 @@ impl Evaluation {
     pub fn new(dims: Dims, patterns: &Patterns) -> Result<Self, ProblemError> {
         let build = |which: &'static str, rows: &[Vec<usize>], expected: usize| {
             if rows.len() != expected {
-                return Err(ProblemError::PatternRows {
-                    which,
-                    rows: rows.len(),
-                    expected,
-                });
+                return Err(ProblemError::PatternRows { which, rows: rows.len(), expected });
             }
             SparseMatrix::from_rows(dims.n, rows).map_err(|source| ProblemError::Pattern { which, source })
         };
@@ -145,11 +133,7 @@ impl Evaluation {
             for (name, m) in [("∂r/∂x", &self.jr), ("∂h/∂x", &self.jh), ("∂g/∂x", &self.jg)] {
                 for i in 0..m.nrows() {
                     if let Some(p) = m.row_values(i).iter().position(|x| !x.is_finite()) {
-                        return Some(format!(
-                            "{name} row {i}, column {} = {}",
-                            m.row_cols(i)[p],
-                            m.row_values(i)[p]
-                        ));
+                        return Some(format!("{name} row {i}, column {} = {}", m.row_cols(i)[p], m.row_values(i)[p]));
                     }
                 }
             }
@@ -189,16 +173,10 @@ pub(crate) fn checked_scales(problem: &dyn Problem, dims: Dims) -> Result<Scales
             return Ok(vec![1.0; len]);
         }
         if s.len() != len {
-            return Err(ProblemError::Scales {
-                kind,
-                message: format!("{} given for {len} constraints", s.len()),
-            });
+            return Err(ProblemError::Scales { kind, message: format!("{} given for {len} constraints", s.len()) });
         }
         if let Some(i) = s.iter().position(|v| !(v.is_finite() && *v > 0.0)) {
-            return Err(ProblemError::Scales {
-                kind,
-                message: format!("scale {i} is {}, must be finite and positive", s[i]),
-            });
+            return Err(ProblemError::Scales { kind, message: format!("scale {i} is {}, must be finite and positive", s[i]) });
         }
         Ok(s)
     };

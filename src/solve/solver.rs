@@ -137,10 +137,7 @@ impl fmt::Display for StopReason {
             StopReason::LineSearchFailed => f.write_str("line search failed to find an acceptable step"),
             StopReason::Stalled => f.write_str("stalled: no further progress at this precision"),
             StopReason::Infeasible { worst, violation } => {
-                write!(
-                    f,
-                    "infeasible: {worst} still violated by {violation:.3e} (scaled) at the largest penalty"
-                )
+                write!(f, "infeasible: {worst} still violated by {violation:.3e} (scaled) at the largest penalty")
             }
             StopReason::TimeLimit => f.write_str("time limit reached"),
             StopReason::EvaluationError(m) => write!(f, "evaluation failed: {m}"),

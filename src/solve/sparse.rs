@@ -21,12 +21,7 @@ pub enum PatternError {
     #[error("row {row}: column {col} is listed twice")]
     DuplicateColumn { row: usize, col: usize },
     #[error("row {row} spans columns {first}..={last}, wider than the target band of half-width {bandwidth}")]
-    OutsideBand {
-        row: usize,
-        first: usize,
-        last: usize,
-        bandwidth: usize,
-    },
+    OutsideBand { row: usize, first: usize, last: usize, bandwidth: usize },
 }
 
 /// A sparse `nrows × ncols` matrix with a fixed pattern.
@@ -58,12 +53,7 @@ impl SparseMatrix {
             }
             row_ptr.push(col_idx.len());
         }
-        Ok(SparseMatrix {
-            ncols,
-            row_ptr,
-            values: vec![0.0; col_idx.len()],
-            col_idx,
-        })
+        Ok(SparseMatrix { ncols, row_ptr, values: vec![0.0; col_idx.len()], col_idx })
     }
 
     /// An `nrows × ncols` matrix with every entry in the pattern (for tests and tiny problems).
@@ -156,11 +146,7 @@ impl SparseMatrix {
         assert_eq!(y.len(), self.nrows());
         for (i, yi) in y.iter_mut().enumerate() {
             let range = self.row_ptr[i]..self.row_ptr[i + 1];
-            *yi = self.col_idx[range.clone()]
-                .iter()
-                .zip(&self.values[range])
-                .map(|(&c, &v)| v * x[c])
-                .sum();
+            *yi = self.col_idx[range.clone()].iter().zip(&self.values[range]).map(|(&c, &v)| v * x[c]).sum();
         }
     }
 
@@ -194,10 +180,7 @@ impl SparseMatrix {
 
     /// Half-bandwidth of `JᵀJ`: the largest `max(col) − min(col)` over the rows.
     pub fn gram_bandwidth(&self) -> usize {
-        (0..self.nrows())
-            .map(|i| row_span(self.row_cols(i)).map_or(0, |(lo, hi)| hi - lo))
-            .max()
-            .unwrap_or(0)
+        (0..self.nrows()).map(|i| row_span(self.row_cols(i)).map_or(0, |(lo, hi)| hi - lo)).max().unwrap_or(0)
     }
 
     /// `target += Jᵀ D J` with `D = diag(weights)` (all ones when `None`). Only rows with a non-zero weight
@@ -223,12 +206,7 @@ impl SparseMatrix {
             let vals = self.row_values(i);
             if let Some((first, last)) = row_span(cols) {
                 if last - first > bandwidth {
-                    return Err(PatternError::OutsideBand {
-                        row: i,
-                        first,
-                        last,
-                        bandwidth,
-                    });
+                    return Err(PatternError::OutsideBand { row: i, first, last, bandwidth });
                 }
             }
             if let Some(&first) = cols.first() {
@@ -286,18 +264,8 @@ mod tests {
 
     #[test]
     fn rejects_bad_patterns() {
-        assert_eq!(
-            SparseMatrix::from_rows(3, &[vec![0, 3]]),
-            Err(PatternError::ColumnOutOfRange {
-                row: 0,
-                col: 3,
-                ncols: 3
-            })
-        );
-        assert_eq!(
-            SparseMatrix::from_rows(3, &[vec![1], vec![2, 0, 2]]),
-            Err(PatternError::DuplicateColumn { row: 1, col: 2 })
-        );
+        assert_eq!(SparseMatrix::from_rows(3, &[vec![0, 3]]), Err(PatternError::ColumnOutOfRange { row: 0, col: 3, ncols: 3 }));
+        assert_eq!(SparseMatrix::from_rows(3, &[vec![1], vec![2, 0, 2]]), Err(PatternError::DuplicateColumn { row: 1, col: 2 }));
     }
 
     #[test]
@@ -325,21 +293,14 @@ mod tests {
         assert_eq!(m.gram_bandwidth(), 3);
         let weights = [2.0, 0.0, 0.5];
         for banded in [true, false] {
-            let mut g = if banded {
-                SymmetricMatrix::banded(4, 3)
-            } else {
-                SymmetricMatrix::dense(4)
-            };
+            let mut g = if banded { SymmetricMatrix::banded(4, 3) } else { SymmetricMatrix::dense(4) };
             m.add_gram_to(Some(&weights), &mut g).unwrap();
             let d = m.to_dense();
             let expect = d.transpose() * nalgebra::DMatrix::from_diagonal(&nalgebra::DVector::from_column_slice(&weights)) * &d;
             assert!((g.to_dense() - expect).amax() < 1e-15);
         }
         let mut narrow = SymmetricMatrix::banded(4, 2);
-        assert!(matches!(
-            m.add_gram_to(None, &mut narrow),
-            Err(PatternError::OutsideBand { row: 2, .. })
-        ));
+        assert!(matches!(m.add_gram_to(None, &mut narrow), Err(PatternError::OutsideBand { row: 2, .. })));
     }
 
     /// Rows over consecutive columns take the contiguous fast path; the same rows listed out of order take

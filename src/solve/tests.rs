@@ -20,12 +20,7 @@ struct Small {
 
 impl Small {
     fn new(dims: Dims, model: Model, names: Vec<&'static str>) -> Self {
-        Small {
-            dims,
-            model,
-            names,
-            scales: Scales::default(),
-        }
+        Small { dims, model, names, scales: Scales::default() }
     }
 }
 
@@ -105,10 +100,7 @@ fn hs6() -> Small {
         let s = std::f64::consts::SQRT_2;
         let r = vec![s * (1.0 - x[0])];
         let h = vec![10.0 * (x[1] - x[0] * x[0])];
-        (
-            (r, h, vec![]),
-            (mat(1, 2, &[-s, 0.0]), mat(1, 2, &[-20.0 * x[0], 10.0]), DMatrix::zeros(0, 2)),
-        )
+        ((r, h, vec![]), (mat(1, 2, &[-s, 0.0]), mat(1, 2, &[-20.0 * x[0], 10.0]), DMatrix::zeros(0, 2)))
     }
     Small::new(dims(2, 1, 1, 0), model, vec!["10(x1 − x0²) = 0"])
 }
@@ -132,12 +124,7 @@ fn hs71() -> Small {
             jg[(0, i)] = -p / x[i];
         }
         if x.contains(&0.0) {
-            jg.row_mut(0).copy_from_slice(&[
-                -x[1] * x[2] * x[3],
-                -x[0] * x[2] * x[3],
-                -x[0] * x[1] * x[3],
-                -x[0] * x[1] * x[2],
-            ]);
+            jg.row_mut(0).copy_from_slice(&[-x[1] * x[2] * x[3], -x[0] * x[2] * x[3], -x[0] * x[1] * x[3], -x[0] * x[1] * x[2]]);
         }
         for i in 0..4 {
             g.push(1.0 - x[i]);
@@ -171,10 +158,7 @@ fn rosenbrock() -> Small {
 fn infeasible() -> Small {
     fn model(x: &[f64]) -> (Values, Jacobians) {
         let g = vec![x[0] + 1.0, 1.0 - x[0]];
-        (
-            (vec![x[0] - 0.5], vec![], g),
-            (mat(1, 1, &[1.0]), DMatrix::zeros(0, 1), mat(2, 1, &[1.0, -1.0])),
-        )
+        ((vec![x[0] - 0.5], vec![], g), (mat(1, 1, &[1.0]), DMatrix::zeros(0, 1), mat(2, 1, &[1.0, -1.0])))
     }
     Small::new(dims(1, 1, 0, 2), model, vec!["x ≤ −1", "x ≥ 1"])
 }
@@ -190,15 +174,9 @@ struct Smoothing {
 
 impl Smoothing {
     fn new(n: usize) -> Self {
-        let data = (0..n)
-            .map(|i| (4.0 * std::f64::consts::PI * i as f64 / n as f64).sin() + 0.2 * (37.0 * i as f64).sin())
-            .collect();
-        Smoothing {
-            n,
-            data,
-            beta: 3.0,
-            cap: 0.7,
-        }
+        let data =
+            (0..n).map(|i| (4.0 * std::f64::consts::PI * i as f64 / n as f64).sin() + 0.2 * (37.0 * i as f64).sin()).collect();
+        Smoothing { n, data, beta: 3.0, cap: 0.7 }
     }
 }
 
@@ -212,11 +190,7 @@ impl Problem for Smoothing {
         let mut r: Vec<Vec<usize>> = (0..n).map(|i| vec![i]).collect();
         // The smoothness rows list their columns out of order, to exercise that.
         r.extend((1..n - 1).map(|i| vec![i, i - 1, i + 1]));
-        Patterns {
-            r,
-            h: vec![vec![0], vec![n - 1]],
-            g: (0..n).map(|i| vec![i]).collect(),
-        }
+        Patterns { r, h: vec![vec![0], vec![n - 1]], g: (0..n).map(|i| vec![i]).collect() }
     }
 
     #[allow(clippy::needless_range_loop)] // index arithmetic mirrors the formulas
@@ -237,9 +211,7 @@ impl Problem for Smoothing {
                 out.jg.row_values_mut(i)[0] = 1.0;
             }
             for i in 1..n - 1 {
-                out.jr
-                    .row_values_mut(n + i - 1)
-                    .copy_from_slice(&[-2.0 * self.beta, self.beta, self.beta]);
+                out.jr.row_values_mut(n + i - 1).copy_from_slice(&[-2.0 * self.beta, self.beta, self.beta]);
             }
             out.jh.row_values_mut(0)[0] = 1.0;
             out.jh.row_values_mut(1)[0] = 1.0;
@@ -256,11 +228,7 @@ impl Problem for Smoothing {
 }
 
 fn tight() -> Settings {
-    Settings {
-        tol_stationarity: 1e-10,
-        tol_violation: 1e-10,
-        ..Settings::default()
-    }
+    Settings { tol_stationarity: 1e-10, tol_violation: 1e-10, ..Settings::default() }
 }
 
 /// Solves with both solvers; returns (BFGS, LM).
@@ -299,12 +267,7 @@ fn assert_converged(o: &Outcome, what: &str) {
 fn assert_agree(a: &Outcome, b: &Outcome, what: &str) {
     let close = |p: &[f64], q: &[f64]| p.iter().zip(q).all(|(u, v)| (u - v).abs() <= 1e-6 * (1.0 + u.abs()));
     assert!(close(&a.x, &b.x), "{what}: x differ by {}", max_diff(&a.x, &b.x));
-    assert!(
-        close(&[a.objective], &[b.objective]),
-        "{what}: F {} vs {}",
-        a.objective,
-        b.objective
-    );
+    assert!(close(&[a.objective], &[b.objective]), "{what}: F {} vs {}", a.objective, b.objective);
     assert!(
         close(&a.multipliers.lambda, &b.multipliers.lambda),
         "{what}: λ differ by {}",
@@ -320,16 +283,8 @@ fn solve_qp_with_active_inequalities_matches_kkt() {
     for (o, name) in [(&a, "AL-BFGS"), (&b, "AL-LM")] {
         assert_converged(o, name);
         assert!(max_diff(&o.x, &QP_X) < 1e-8, "{name}: x = {:?}", o.x);
-        assert!(
-            max_diff(&o.multipliers.lambda, &QP_LAMBDA) < 1e-6,
-            "{name}: λ = {:?}",
-            o.multipliers.lambda
-        );
-        assert!(
-            max_diff(&o.multipliers.mu, &QP_MU) < 1e-6,
-            "{name}: μ = {:?}",
-            o.multipliers.mu
-        );
+        assert!(max_diff(&o.multipliers.lambda, &QP_LAMBDA) < 1e-6, "{name}: λ = {:?}", o.multipliers.lambda);
+        assert!(max_diff(&o.multipliers.mu, &QP_MU) < 1e-6, "{name}: μ = {:?}", o.multipliers.mu);
         assert!((o.objective - 0.5 * (0.75f64.powi(2) + 1.75f64.powi(2) + 0.25)).abs() < 1e-8);
     }
     assert_agree(&a, &b, "QP");
@@ -338,19 +293,12 @@ fn solve_qp_with_active_inequalities_matches_kkt() {
 #[test]
 fn solve_scaled_constraints_report_multipliers_in_problem_units() {
     let mut p = qp();
-    p.scales = Scales {
-        eq: vec![3.0],
-        ineq: vec![2.0, 0.5, 100.0],
-    };
+    p.scales = Scales { eq: vec![3.0], ineq: vec![2.0, 0.5, 100.0] };
     let (a, b) = both(&mut p, &[1.0, -1.0, 0.0], &tight());
     for o in [&a, &b] {
         assert_converged(o, "scaled QP");
         assert!(max_diff(&o.x, &QP_X) < 1e-8);
-        assert!(
-            max_diff(&o.multipliers.lambda, &QP_LAMBDA) < 1e-6,
-            "λ = {:?}",
-            o.multipliers.lambda
-        );
+        assert!(max_diff(&o.multipliers.lambda, &QP_LAMBDA) < 1e-6, "λ = {:?}", o.multipliers.lambda);
         assert!(max_diff(&o.multipliers.mu, &QP_MU) < 1e-6);
     }
     assert_agree(&a, &b, "scaled QP");
@@ -386,11 +334,7 @@ fn solve_hs71() {
     for o in [&a, &b] {
         assert_converged(o, "HS71");
         assert!(max_diff(&o.x, &HS71_X) < 1e-6, "x = {:?}", o.x);
-        assert!(
-            (o.objective - HS71_SHIFT - HS71_F).abs() < 1e-6,
-            "f = {}",
-            o.objective - HS71_SHIFT
-        );
+        assert!((o.objective - HS71_SHIFT - HS71_F).abs() < 1e-6, "f = {}", o.objective - HS71_SHIFT);
         // Active: the product, x₀ ≥ 1 and the sphere; the others have zero multipliers.
         let l = &o.multipliers.lambda;
         assert!(l[0] > 0.1 && l[1] > 0.1, "λ = {l:?}");
@@ -416,9 +360,7 @@ fn solve_infeasible_reports_the_worst_constraint() {
     let (a, b) = both(&mut p, &[3.0], &Settings::default());
     for o in [&a, &b] {
         assert!(!o.converged);
-        let StopReason::Infeasible { worst, violation } = &o.reason else {
-            panic!("{}", summary(o))
-        };
+        let StopReason::Infeasible { worst, violation } = &o.reason else { panic!("{}", summary(o)) };
         assert!(worst == "x ≤ −1" || worst == "x ≥ 1", "{worst}");
         assert!((1.0..1.01).contains(violation), "{violation}");
         assert_eq!(o.worst_constraint.as_ref().map(|c| c.name.as_str()), Some(worst.as_str()));
@@ -431,11 +373,7 @@ fn solve_infeasible_reports_the_worst_constraint() {
 fn solve_banded_smoothing_n500_lm_and_bfgs_agree() {
     let mut p = Smoothing::new(500);
     let x0 = vec![0.0; 500];
-    let settings = Settings {
-        tol_stationarity: 1e-10,
-        tol_violation: 1e-10,
-        ..Settings::default()
-    };
+    let settings = Settings { tol_stationarity: 1e-10, tol_violation: 1e-10, ..Settings::default() };
     let (a, b) = both(&mut p, &x0, &settings);
     assert_converged(&a, "smoothing, AL-BFGS");
     assert_converged(&b, "smoothing, AL-LM");
@@ -453,14 +391,8 @@ fn solve_banded_smoothing_n500_lm_and_bfgs_agree() {
 #[test]
 fn solve_augmented_lagrangian_gradient_matches_finite_differences() {
     let mut p = hs71();
-    p.scales = Scales {
-        eq: vec![4.0],
-        ineq: vec![10.0, 1.0, 1.0, 1.0, 1.0, 2.0, 2.0, 2.0, 2.0],
-    };
-    let settings = Settings {
-        initial_penalty: Some(3.0),
-        ..Settings::default()
-    };
+    p.scales = Scales { eq: vec![4.0], ineq: vec![10.0, 1.0, 1.0, 1.0, 1.0, 2.0, 2.0, 2.0, 2.0] };
+    let settings = Settings { initial_penalty: Some(3.0), ..Settings::default() };
     let x = [1.1, 4.5, 3.9, 1.2];
     let mut observer = |_: &Progress| {};
     let mut al = AugmentedLagrangian::new(&mut p, &mut observer, &x, &settings, std::time::Instant::now()).unwrap();
@@ -478,11 +410,7 @@ fn solve_augmented_lagrangian_gradient_matches_finite_differences() {
         al.evaluate(&xm, false).unwrap();
         let fm = al.value();
         let fd = (fp - fm) / (2.0 * h);
-        assert!(
-            (fd - grad[i]).abs() < 1e-6 * (1.0 + fd.abs()),
-            "∂L_A/∂x{i}: {} vs {fd}",
-            grad[i]
-        );
+        assert!((fd - grad[i]).abs() < 1e-6 * (1.0 + fd.abs()), "∂L_A/∂x{i}: {} vs {fd}", grad[i]);
     }
 }
 
@@ -491,11 +419,7 @@ fn solve_warm_start_from_the_solution_needs_no_steps() {
     let mut p = qp();
     let cold = AugLagLevenbergMarquardt.solve(&mut p, &[0.0; 3], &tight(), &mut |_| {});
     assert_converged(&cold, "cold");
-    let warm_settings = Settings {
-        warm_start: Some(cold.multipliers.clone()),
-        initial_penalty: Some(cold.penalty),
-        ..tight()
-    };
+    let warm_settings = Settings { warm_start: Some(cold.multipliers.clone()), initial_penalty: Some(cold.penalty), ..tight() };
     let (a, b) = both(&mut p, &cold.x, &warm_settings);
     for o in [&a, &b] {
         assert_converged(o, "warm");
@@ -513,9 +437,7 @@ fn solve_observer_sees_monotone_progress() {
         let o = solver.solve(&mut p, &[1.0, 5.0, 5.0, 1.0], &Settings::default(), &mut |pr| seen.push(*pr));
         assert_converged(&o, "HS71, default settings");
         assert!(!seen.is_empty());
-        assert!(seen
-            .windows(2)
-            .all(|w| w[0].iteration <= w[1].iteration && w[0].evaluations <= w[1].evaluations));
+        assert!(seen.windows(2).all(|w| w[0].iteration <= w[1].iteration && w[0].evaluations <= w[1].evaluations));
         assert_eq!(seen.last().map(|s| s.iteration), Some(o.iterations));
     }
 }
@@ -523,19 +445,13 @@ fn solve_observer_sees_monotone_progress() {
 #[test]
 fn solve_limits_are_reported() {
     let mut p = hs71();
-    let few = Settings {
-        max_iterations: 3,
-        ..Settings::default()
-    };
+    let few = Settings { max_iterations: 3, ..Settings::default() };
     let (a, b) = both(&mut p, &[1.0, 5.0, 5.0, 1.0], &few);
     for o in [&a, &b] {
         assert_eq!(o.reason, StopReason::MaxIterations);
         assert!(!o.converged && o.iterations == 3);
     }
-    let no_time = Settings {
-        time_limit: Some(0.0),
-        ..Settings::default()
-    };
+    let no_time = Settings { time_limit: Some(0.0), ..Settings::default() };
     let (a, b) = both(&mut p, &[1.0, 5.0, 5.0, 1.0], &no_time);
     for o in [&a, &b] {
         assert_eq!(o.reason, StopReason::TimeLimit);
@@ -565,11 +481,7 @@ impl Problem for Faulty {
         if self.calls > self.fail_after {
             return Err("the dynamics diverged".into());
         }
-        out.r[0] = if self.nan_at_start {
-            f64::NAN
-        } else {
-            10.0 * (x[1] - x[0] * x[0])
-        };
+        out.r[0] = if self.nan_at_start { f64::NAN } else { 10.0 * (x[1] - x[0] * x[0]) };
         out.r[1] = 1.0 - x[0];
         if want_jac {
             out.jr.row_values_mut(0).copy_from_slice(&[-20.0 * x[0], 10.0]);
@@ -582,23 +494,13 @@ impl Problem for Faulty {
 #[test]
 fn solve_evaluation_errors_are_values() {
     for solver in [&AugLagBfgs::default() as &dyn Solver, &AugLagLevenbergMarquardt] {
-        let mut nan = Faulty {
-            nan_at_start: true,
-            fail_after: usize::MAX,
-            calls: 0,
-        };
+        let mut nan = Faulty { nan_at_start: true, fail_after: usize::MAX, calls: 0 };
         let o = solver.solve(&mut nan, &[0.0, 0.0], &Settings::default(), &mut |_| {});
-        let StopReason::EvaluationError(m) = &o.reason else {
-            panic!("{}", o.reason)
-        };
+        let StopReason::EvaluationError(m) = &o.reason else { panic!("{}", o.reason) };
         assert!(m.contains("r[0]") && m.contains("NaN"), "{m}");
         assert!(!o.converged);
 
-        let mut failing = Faulty {
-            nan_at_start: false,
-            fail_after: 4,
-            calls: 0,
-        };
+        let mut failing = Faulty { nan_at_start: false, fail_after: 4, calls: 0 };
         let o = solver.solve(&mut failing, &[-1.2, 1.0], &tight(), &mut |_| {});
         assert_eq!(o.reason, StopReason::EvaluationError("the dynamics diverged".into()));
         assert!(!o.converged && o.x.iter().all(|v| v.is_finite()));
@@ -610,39 +512,17 @@ fn solve_invalid_input_is_reported_not_panicked() {
     let solver = AugLagLevenbergMarquardt;
     let mut p = qp();
     let o = solver.solve(&mut p, &[0.0; 2], &Settings::default(), &mut |_| {});
-    assert!(
-        matches!(&o.reason, StopReason::InvalidInput(m) if m.contains("x0 has 2")),
-        "{}",
-        o.reason
-    );
+    assert!(matches!(&o.reason, StopReason::InvalidInput(m) if m.contains("x0 has 2")), "{}", o.reason);
 
     p.scales.ineq = vec![1.0, -1.0, 1.0];
     let o = solver.solve(&mut p, &[0.0; 3], &Settings::default(), &mut |_| {});
-    assert!(
-        matches!(&o.reason, StopReason::InvalidInput(m) if m.contains("scale 1")),
-        "{}",
-        o.reason
-    );
+    assert!(matches!(&o.reason, StopReason::InvalidInput(m) if m.contains("scale 1")), "{}", o.reason);
 
     let mut p = qp();
-    let bad = Settings {
-        warm_start: Some(Multipliers {
-            lambda: vec![1.0],
-            mu: vec![],
-        }),
-        ..Settings::default()
-    };
+    let bad = Settings { warm_start: Some(Multipliers { lambda: vec![1.0], mu: vec![] }), ..Settings::default() };
     let o = solver.solve(&mut p, &[0.0; 3], &bad, &mut |_| {});
     assert!(matches!(o.reason, StopReason::InvalidInput(_)));
-    let o = solver.solve(
-        &mut p,
-        &[0.0; 3],
-        &Settings {
-            time_limit: Some(f64::NAN),
-            ..Settings::default()
-        },
-        &mut |_| {},
-    );
+    let o = solver.solve(&mut p, &[0.0; 3], &Settings { time_limit: Some(f64::NAN), ..Settings::default() }, &mut |_| {});
     assert!(matches!(o.reason, StopReason::InvalidInput(_)));
 
     struct BadPattern;
@@ -651,21 +531,14 @@ fn solve_invalid_input_is_reported_not_panicked() {
             dims(2, 1, 0, 0)
         }
         fn jacobian_patterns(&self) -> Patterns {
-            Patterns {
-                r: vec![vec![0, 2]],
-                ..Patterns::default()
-            }
+            Patterns { r: vec![vec![0, 2]], ..Patterns::default() }
         }
         fn evaluate(&mut self, _: &[f64], _: bool, _: &mut Evaluation) -> Result<(), String> {
             Ok(())
         }
     }
     let o = solver.solve(&mut BadPattern, &[0.0; 2], &Settings::default(), &mut |_| {});
-    assert!(
-        matches!(&o.reason, StopReason::InvalidInput(m) if m.contains("column 2")),
-        "{}",
-        o.reason
-    );
+    assert!(matches!(&o.reason, StopReason::InvalidInput(m) if m.contains("column 2")), "{}", o.reason);
 }
 
 #[test]
@@ -737,22 +610,14 @@ impl Problem for Pendulum {
     }
 
     fn scales(&self) -> Scales {
-        Scales {
-            eq: vec![],
-            ineq: vec![self.tau_max; 2 * (self.n - 2)],
-        }
+        Scales { eq: vec![], ineq: vec![self.tau_max; 2 * (self.n - 2)] }
     }
 }
 
 #[test]
 fn solve_pendulum_with_active_torque_limits_large_residuals() {
     let n = 60;
-    let mut p = Pendulum {
-        n,
-        duration: 2.0,
-        c: 10.0,
-        tau_max: 5.0,
-    };
+    let mut p = Pendulum { n, duration: 2.0, c: 10.0, tau_max: 5.0 };
     let x0: Vec<f64> = (0..n).map(|i| 2.0 * i as f64 / (n - 1) as f64).collect();
     let (a, b) = both(&mut p, &x0, &tight());
     assert_converged(&a, "pendulum, AL-BFGS");
@@ -763,35 +628,20 @@ fn solve_pendulum_with_active_torque_limits_large_residuals() {
     assert!(active >= 10, "{active} active torque limits");
     let mut e = Evaluation::new(p.dims(), &p.jacobian_patterns()).unwrap();
     p.evaluate(&b.x, false, &mut e).unwrap();
-    assert!(
-        e.g.iter().all(|&g| g <= 1e-9),
-        "max g = {}",
-        e.g.iter().fold(f64::MIN, |m, &g| m.max(g))
-    );
-    assert!(
-        e.r.iter().map(|r| r.abs()).fold(0.0, f64::max) > 0.5,
-        "residuals stay large at the optimum"
-    );
+    assert!(e.g.iter().all(|&g| g <= 1e-9), "max g = {}", e.g.iter().fold(f64::MIN, |m, &g| m.max(g)));
+    assert!(e.r.iter().map(|r| r.abs()).fold(0.0, f64::max) > 0.5, "residuals stay large at the optimum");
 }
 
 /// A tolerance below rounding cannot be met: the solve must say so (stalled or line search failed) rather
 /// than run to the iteration limit, and must not claim convergence.
 #[test]
 fn solve_unattainable_tolerance_ends_honestly() {
-    let settings = Settings {
-        tol_stationarity: 1e-17,
-        tol_violation: 1e-17,
-        ..Settings::default()
-    };
+    let settings = Settings { tol_stationarity: 1e-17, tol_violation: 1e-17, ..Settings::default() };
     for (mut p, x0) in [(qp(), vec![0.0; 3]), (hs71(), vec![1.0, 5.0, 5.0, 1.0])] {
         let (a, b) = both(&mut p, &x0, &settings);
         for o in [&a, &b] {
             assert!(!o.converged, "{}", summary(o));
-            assert!(
-                matches!(o.reason, StopReason::Stalled | StopReason::LineSearchFailed),
-                "{}",
-                summary(o)
-            );
+            assert!(matches!(o.reason, StopReason::Stalled | StopReason::LineSearchFailed), "{}", summary(o));
             assert!(o.iterations < 1000, "{}", summary(o));
             assert!(o.stationarity < 1e-12 && o.worst_violation < 1e-9, "{}", summary(o));
         }
