@@ -143,6 +143,54 @@ pub fn validate(spec: &Spec, origin: &str) -> Result<()> {
     Ok(())
 }
 
+/// Adjusts the joints `free` of posture `q` (damped Gauss–Newton, minimum-norm steps) until every contact
+/// holds to 1e-9 m; the other joints keep their values. Errs with the remaining distance when it cannot.
+pub fn close_loop(
+    model: &crate::Model,
+    contacts: &[Contact],
+    q: &[f64],
+    free: &[usize],
+) -> std::result::Result<Vec<f64>, String> {
+    use crate::dynamics::{kinematics, point_force};
+    use nalgebra::{DMatrix, DVector};
+    let mut q = q.to_vec();
+    let mut data = crate::dynamics::Data::new(model);
+    let rows: usize = contacts.iter().map(|c| c.directions().len()).sum();
+    let mut residual = f64::INFINITY;
+    for _ in 0..100 {
+        kinematics::placements(model, &mut data, &q);
+        let mut phi = DVector::zeros(rows);
+        let mut jac = DMatrix::zeros(rows, free.len());
+        let mut row = 0;
+        for c in contacts {
+            let body = model.frames[c.frame].body;
+            let p = kinematics::frame_placement(model, &data, c.frame).translation;
+            let path = point_force::path_dofs(model, body);
+            let mut jp = vec![crate::spatial::Vec3::zeros(); path.len()];
+            point_force::point_jacobian(&data, &path, &p, &mut jp);
+            for e in c.directions() {
+                phi[row] = e.dot(&(p - c.target));
+                for (col, dof) in free.iter().enumerate() {
+                    if let Some(k) = path.iter().position(|d| d == dof) {
+                        jac[(row, col)] = e.dot(&jp[k]);
+                    }
+                }
+                row += 1;
+            }
+        }
+        residual = phi.norm();
+        if residual < 1e-9 {
+            return Ok(q);
+        }
+        let step = jac.svd(true, true).solve(&(-phi), 1e-10).map_err(|e| e.to_string())?;
+        let scale = (0.5 / step.amax().max(1e-300)).min(1.0); // at most ~30° per step
+        for (col, dof) in free.iter().enumerate() {
+            q[*dof] += scale * step[col];
+        }
+    }
+    Err(format!("the contacts cannot be closed by moving the listed joints: {:.1} mm remain", residual * 1e3))
+}
+
 /// The initial guess as solver unknowns.
 pub fn initial_x(spec: &Spec, problem: &Transcription) -> Result<Vec<f64>> {
     let nv = spec.model.nv();
@@ -184,7 +232,7 @@ pub fn check_between_nodes(spec: &Spec, x: &[f64], per_span: usize) -> Result<Op
     let count = spline.n_spans() * per_span;
     let times: Vec<f64> = (0..=count).map(|k| spec.duration * k as f64 / count as f64).collect();
     let nodes = spline.grid(&times)?;
-    let mut grid = Transcription::with_nodes(spec, spline, nodes);
+    let mut grid = Transcription::with_nodes(spec, spline, nodes.clone(), nodes);
     let dims = grid.dims();
     if dims.n_eq + dims.n_ineq == 0 {
         return Ok(None);
@@ -234,7 +282,7 @@ pub fn plan(spec: &Spec, solver: SolverKind, settings: &Settings, observer: &mut
 pub fn sample(spec: &Spec, plan: &Plan, times: &[f64]) -> Result<Vec<NodeValues>> {
     let spline = CubicBSpline::new(spec.n_ctrl, spec.duration)?;
     let nodes = spline.grid(times)?;
-    let mut t = Transcription::with_nodes(spec, spline, nodes);
+    let mut t = Transcription::with_nodes(spec, spline, nodes.clone(), nodes);
     t.set_x(&plan.x);
     Ok((0..t.len()).map(|k| t.node_values(k)).collect())
 }

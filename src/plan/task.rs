@@ -63,6 +63,11 @@ pub struct MotionSection {
     /// not named follow the straight line.
     #[serde(default)]
     pub via: Vec<Via>,
+    /// Joints that may be adjusted (from the given values) so that the start and goal postures satisfy the
+    /// contacts exactly — a closed loop's postures are hard to write by hand (e.g. the bottom of a push-up:
+    /// give the elbow angle, let the body tilt and the shoulder follow).
+    #[serde(default)]
+    pub close_loop_with: Vec<String>,
 }
 
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -597,6 +602,17 @@ pub fn resolve(file: &TaskFile, base: &Path, origin: &str) -> Result<Spec> {
             push_normal,
             friction: cs.friction,
         });
+    }
+    let (mut start, mut goal) = (start, goal);
+    if !m.close_loop_with.is_empty() {
+        let free: Vec<usize> = m
+            .close_loop_with
+            .iter()
+            .map(|name| dof(&model, name, &format!("motion.close_loop_with.{name}"), origin))
+            .collect::<Result<_>>()?;
+        for (which, q) in [("motion.start", &mut start), ("motion.goal", &mut goal)] {
+            *q = super::close_loop(&model, &contacts, q, &free).map_err(|m| Error::task(origin, which, m))?;
+        }
     }
     let balance = c.balance.as_ref().map(|b| Balance { x: b.x, y: b.y, ground_z: b.ground_z });
     let objective = match file.objective.kind.as_str() {

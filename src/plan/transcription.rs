@@ -34,10 +34,13 @@ pub struct Layout {
     pub fixed: Vec<bool>,
     pub block_start: Vec<usize>,
     pub n: usize,
+    /// Contact forces are stored as `λ / lambda_scale` (the figure's weight, N) so that every unknown is of
+    /// order one — Levenberg–Marquardt's damping then treats radians and newtons alike.
+    pub lambda_scale: f64,
 }
 
 impl Layout {
-    pub fn new(nv: usize, n_ctrl: usize, n_lambda: usize, zero_end_velocity: bool) -> Layout {
+    pub fn new(nv: usize, n_ctrl: usize, n_lambda: usize, zero_end_velocity: bool, lambda_scale: f64) -> Layout {
         let fixed: Vec<bool> =
             (0..n_ctrl).map(|j| j == 0 || j + 1 == n_ctrl || (zero_end_velocity && (j == 1 || j + 2 == n_ctrl))).collect();
         let mut block_start = Vec::with_capacity(n_ctrl);
@@ -46,7 +49,7 @@ impl Layout {
             block_start.push(n);
             n += if f { 0 } else { nv } + n_lambda;
         }
-        Layout { nv, n_ctrl, n_lambda, fixed, block_start, n }
+        Layout { nv, n_ctrl, n_lambda, fixed, block_start, n, lambda_scale }
     }
 
     pub fn joint_var(&self, j: usize, i: usize) -> Option<usize> {
@@ -68,7 +71,7 @@ impl Layout {
                 };
             }
             for m in 0..self.n_lambda {
-                lambda[j * self.n_lambda + m] = x[self.lambda_var(j, m)];
+                lambda[j * self.n_lambda + m] = x[self.lambda_var(j, m)] * self.lambda_scale;
             }
         }
     }
@@ -83,7 +86,7 @@ impl Layout {
                 }
             }
             for m in 0..self.n_lambda {
-                x[self.lambda_var(j, m)] = lambda[j * self.n_lambda + m];
+                x[self.lambda_var(j, m)] = lambda[j * self.n_lambda + m] / self.lambda_scale;
             }
         }
         x
@@ -142,6 +145,10 @@ pub struct Transcription<'s> {
     pub spec: &'s Spec,
     pub spline: CubicBSpline,
     pub nodes: Nodes,
+    /// Where the contacts (loop closures) are imposed: the interior knots and the end spans' midpoints. Imposing them
+    /// at every quadrature node would ask more of a cubic spline than it has freedom for (a curved closure
+    /// manifold cannot be followed exactly); between these points the drift is measured and reported.
+    pub contact_nodes: Nodes,
     pub layout: Layout,
     /// Joint control points fixed by the boundary conditions (`n_ctrl × nv`; free entries unused).
     pub fixed_values: Vec<f64>,
@@ -192,11 +199,19 @@ impl<'s> Transcription<'s> {
     pub fn new(spec: &'s Spec) -> crate::Result<Self> {
         let spline = CubicBSpline::new(spec.n_ctrl, spec.duration)?;
         let nodes = spline.quadrature_nodes(spec.nodes_per_span)?;
-        Ok(Self::with_nodes(spec, spline, nodes))
+        let h = spline.knot_spacing();
+        // Interior knots, plus the middle of the two end spans, where the fixed end conditions leave the
+        // spline least freedom to follow the loop.
+        let n = spline.n_spans();
+        let mut times: Vec<f64> = (1..n).map(|k| k as f64 * h).collect();
+        times.insert(0, h / 2.0);
+        times.push(spline.duration() - h / 2.0);
+        let contact_nodes = spline.grid(&times)?;
+        Ok(Self::with_nodes(spec, spline, nodes, contact_nodes))
     }
 
     /// The same problem evaluated at other nodes (a dense grid to check constraints between nodes).
-    pub fn with_nodes(spec: &'s Spec, spline: CubicBSpline, nodes: Nodes) -> Self {
+    pub fn with_nodes(spec: &'s Spec, spline: CubicBSpline, nodes: Nodes, contact_nodes: Nodes) -> Self {
         let model = &spec.model;
         let nv = model.nv();
         let mut contacts = Vec::new();
@@ -213,7 +228,8 @@ impl<'s> Transcription<'s> {
             offset += directions.len();
         }
         let n_lambda = offset;
-        let layout = Layout::new(nv, spec.n_ctrl, n_lambda, spec.zero_end_velocity);
+        let total_weight = model.total_mass() * spec.gravity.norm().max(9.81);
+        let layout = Layout::new(nv, spec.n_ctrl, n_lambda, spec.zero_end_velocity, total_weight);
         let mut fixed_values = vec![0.0; spec.n_ctrl * nv];
         for i in 0..nv {
             let (qd0, qdt) = (0.0, 0.0);
@@ -263,7 +279,6 @@ impl<'s> Transcription<'s> {
             }
         }
         let load_paths = spec.loads.iter().map(|l| path_dofs(model, model.frames[l.frame].body)).collect();
-        let total_weight = model.total_mass() * spec.gravity.norm().max(9.81);
         let work = NodeWork {
             q: vec![0.0; nv],
             qd: vec![0.0; nv],
@@ -293,6 +308,7 @@ impl<'s> Transcription<'s> {
             spec,
             spline,
             nodes,
+            contact_nodes,
             layout,
             fixed_values,
             ineq_rows,
@@ -432,7 +448,7 @@ impl<'s> Transcription<'s> {
             for a in 0..4 {
                 let b = basis.b[a] * s;
                 for m in 0..layout.n_lambda {
-                    out[pos] = d_l[m] * b;
+                    out[pos] = d_l[m] * b * layout.lambda_scale;
                     pos += 1;
                 }
             }
@@ -486,10 +502,55 @@ impl Transcription<'_> {
     }
 }
 
+impl Transcription<'_> {
+    /// The loop closures `Φ = Eᵀ(p − target)` at the contact nodes, and their Jacobians.
+    fn contact_rows(&mut self, want_jac: bool, out: &mut Evaluation) {
+        let spec = self.spec;
+        let model = &spec.model;
+        let nv = self.layout.nv;
+        if spec.contacts.is_empty() {
+            return;
+        }
+        for k in 0..self.contact_nodes.t.len() {
+            let basis = self.contact_nodes.basis[k];
+            let w = &mut self.work;
+            basis.eval(&self.ctrl, nv, &mut w.q, &mut w.qd, &mut w.qdd);
+            kinematics::placements(model, &mut self.data, &w.q);
+            for (c, contact) in spec.contacts.iter().enumerate() {
+                let info = &self.contacts[c];
+                let p = kinematics::frame_placement(model, &self.data, contact.frame).translation;
+                if want_jac {
+                    point_jacobian(&self.data, &info.path, &p, &mut w.jac[c]);
+                }
+                for (m, e) in info.directions.iter().enumerate() {
+                    let row = k * self.n_eq_node + info.offset + m;
+                    out.h[row] = e.dot(&(p - contact.target));
+                    if want_jac {
+                        let (d_q, rest) = w.row.split_at_mut(nv);
+                        let zeros = &mut rest[..nv];
+                        d_q.iter_mut().for_each(|x| *x = 0.0);
+                        zeros.iter_mut().for_each(|x| *x = 0.0);
+                        for (col, &dof) in info.path.iter().enumerate() {
+                            d_q[dof] = e.dot(&w.jac[c][col]);
+                        }
+                        let d = Derivatives { q: d_q, v: zeros, a: zeros, lambda: None };
+                        Self::chain_rule(&self.layout, &basis, 1.0, d, out.jh.row_values_mut(row));
+                    }
+                }
+            }
+        }
+    }
+}
+
 impl Problem for Transcription<'_> {
     fn dims(&self) -> Dims {
         let nn = self.n_nodes();
-        Dims { n: self.layout.n, n_res: nn * self.layout.nv, n_eq: nn * self.n_eq_node, n_ineq: nn * self.n_ineq_node() }
+        Dims {
+            n: self.layout.n,
+            n_res: nn * self.layout.nv,
+            n_eq: self.contact_nodes.t.len() * self.n_eq_node,
+            n_ineq: nn * self.n_ineq_node(),
+        }
     }
 
     fn jacobian_patterns(&self) -> Patterns {
@@ -501,9 +562,6 @@ impl Problem for Transcription<'_> {
             for _ in 0..nv {
                 p.r.push(both.clone());
             }
-            for _ in 0..self.n_eq_node {
-                p.h.push(motion.clone());
-            }
             for row in &self.ineq_rows {
                 p.g.push(match *row {
                     IneqRow::UpperPosition(i) | IneqRow::LowerPosition(i) => {
@@ -514,11 +572,18 @@ impl Problem for Transcription<'_> {
                 });
             }
         }
+        for basis in &self.contact_nodes.basis {
+            let (motion, _) = self.node_columns(basis);
+            for _ in 0..self.n_eq_node {
+                p.h.push(motion.clone());
+            }
+        }
         p
     }
 
     fn evaluate(&mut self, x: &[f64], want_jac: bool, out: &mut Evaluation) -> Result<(), String> {
         self.set_x(x);
+        self.contact_rows(want_jac, out);
         let nv = self.layout.nv;
         let nl = self.layout.n_lambda;
         let n_ineq = self.n_ineq_node();
@@ -533,25 +598,6 @@ impl Problem for Transcription<'_> {
                 out.r[k * nv + l] = s * w.tau[l];
                 if want_jac {
                     Self::chain_rule(&self.layout, &basis, s, w.torque_row(l, nv, nl), out.jr.row_values_mut(k * nv + l));
-                }
-            }
-            // Contacts: Φ = Eᵀ(p − target).
-            for (c, contact) in self.spec.contacts.iter().enumerate() {
-                let info = &self.contacts[c];
-                for (m, e) in info.directions.iter().enumerate() {
-                    let row = k * self.n_eq_node + info.offset + m;
-                    out.h[row] = e.dot(&(w.points[c] - contact.target));
-                    if want_jac {
-                        let (d_q, rest) = w.row.split_at_mut(nv);
-                        let zeros = &mut rest[..nv];
-                        d_q.iter_mut().for_each(|x| *x = 0.0);
-                        zeros.iter_mut().for_each(|x| *x = 0.0);
-                        for (col, &dof) in info.path.iter().enumerate() {
-                            d_q[dof] = e.dot(&w.jac[c][col]);
-                        }
-                        let d = Derivatives { q: d_q, v: zeros, a: zeros, lambda: None };
-                        Self::chain_rule(&self.layout, &basis, 1.0, d, out.jh.row_values_mut(row));
-                    }
                 }
             }
             // Inequalities.
@@ -607,7 +653,7 @@ impl Problem for Transcription<'_> {
                             let mut pos = 0;
                             for a in 0..4 {
                                 for c in &coef {
-                                    vals[pos] = c * basis.b[a];
+                                    vals[pos] = c * basis.b[a] * self.layout.lambda_scale;
                                     pos += 1;
                                 }
                             }
@@ -660,7 +706,10 @@ impl Problem for Transcription<'_> {
                 IneqRow::Balance(_) => (0.1 * self.total_weight).max(1.0),
             })
             .collect();
-        Scales { eq: vec![1.0; nn * self.n_eq_node], ineq: (0..nn).flat_map(|_| per_node.iter().copied()).collect() }
+        Scales {
+            eq: vec![1.0; self.contact_nodes.t.len() * self.n_eq_node],
+            ineq: (0..nn).flat_map(|_| per_node.iter().copied()).collect(),
+        }
     }
 
     fn constraint_name(&self, kind: ConstraintKind, index: usize) -> String {
@@ -674,7 +723,7 @@ impl Problem for Transcription<'_> {
                     "contact \"{}\" (component {}) at t = {:.3} s",
                     self.spec.contacts[c].name,
                     m - self.contacts[c].offset,
-                    self.nodes.t[k]
+                    self.contact_nodes.t[k]
                 )
             }
             ConstraintKind::Inequality => {
