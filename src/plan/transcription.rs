@@ -198,7 +198,16 @@ impl<'s> Transcription<'s> {
     /// The transcription on the spec's quadrature nodes.
     pub fn new(spec: &'s Spec) -> crate::Result<Self> {
         let spline = CubicBSpline::new(spec.n_ctrl, spec.duration)?;
-        let nodes = spline.quadrature_nodes(spec.nodes_per_span)?;
+        // The Gauss–Legendre nodes, plus both ends with weight 0: they add nothing to the objective but put
+        // the limits where they often bind hardest — the start and goal postures, holding still.
+        let mut nodes = spline.quadrature_nodes(spec.nodes_per_span)?;
+        let ends = spline.grid(&[0.0, spline.duration()])?;
+        nodes.t.insert(0, ends.t[0]);
+        nodes.w.insert(0, 0.0);
+        nodes.basis.insert(0, ends.basis[0]);
+        nodes.t.push(ends.t[1]);
+        nodes.w.push(0.0);
+        nodes.basis.push(ends.basis[1]);
         let h = spline.knot_spacing();
         // Interior knots, plus the middle of the two end spans, where the fixed end conditions leave the
         // spline least freedom to follow the loop.
