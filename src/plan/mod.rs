@@ -46,6 +46,8 @@ pub struct Plan {
     pub x: Vec<f64>,
     pub outcome: Outcome,
     pub solver: SolverKind,
+    /// Whether the structured solver's result was finished by a BFGS polish (see [`plan`]).
+    pub polished: bool,
     /// `½∫τᵀWτ dt` of the initial guess (same quadrature).
     pub initial_objective: f64,
     pub solve_seconds: f64,
@@ -265,17 +267,46 @@ pub fn plan(spec: &Spec, solver: SolverKind, settings: &Settings, observer: &mut
     let x0 = initial_x(spec, &problem)?;
     let initial_objective = objective_at(&mut problem, &x0).map_err(|e| Error::task("task", "initial guess", e))?;
     let started = Instant::now();
-    let outcome = match solver {
+    let mut outcome = match solver {
         SolverKind::Structured => solve::AugLagLevenbergMarquardt.solve(&mut problem, &x0, settings, observer),
         SolverKind::AuglagBfgs => solve::AugLagBfgs::default().solve(&mut problem, &x0, settings, observer),
     };
+    // Gauss–Newton ignores the curvature of the residuals (large with contact forces: λ·∂²Φ), so on loop
+    // closures Levenberg–Marquardt can stall just short of the stationarity test. A quasi-Newton polish
+    // from where it stopped, warm-started with its multipliers, supplies that curvature.
+    let mut polished = false;
+    if solver == SolverKind::Structured
+        && !outcome.converged
+        && matches!(outcome.reason, solve::StopReason::Stalled | solve::StopReason::MaxIterations)
+    {
+        let polish_settings = Settings { warm_start: Some(outcome.multipliers.clone()), ..settings.clone() };
+        let polish = solve::AugLagBfgs::default().solve(&mut problem, &outcome.x, &polish_settings, observer);
+        if polish.converged || polish.worst_violation <= outcome.worst_violation && polish.objective <= outcome.objective {
+            polished = true;
+            outcome = Outcome {
+                iterations: outcome.iterations + polish.iterations,
+                evaluations: outcome.evaluations + polish.evaluations,
+                ..polish
+            };
+        }
+    }
     let solve_seconds = started.elapsed().as_secs_f64();
     let nv = spec.model.nv();
     let mut ctrl = vec![0.0; spec.n_ctrl * nv];
     let mut lambda_ctrl = vec![0.0; spec.n_ctrl * problem.layout.n_lambda];
     problem.layout.unpack(&outcome.x, &problem.fixed_values, &mut ctrl, &mut lambda_ctrl);
     let worst_between_nodes = check_between_nodes(spec, &outcome.x, 16)?;
-    Ok(Plan { ctrl, lambda_ctrl, x: outcome.x.clone(), outcome, solver, initial_objective, solve_seconds, worst_between_nodes })
+    Ok(Plan {
+        ctrl,
+        lambda_ctrl,
+        x: outcome.x.clone(),
+        outcome,
+        solver,
+        polished,
+        initial_objective,
+        solve_seconds,
+        worst_between_nodes,
+    })
 }
 
 /// The planned motion sampled at `times` (s).

@@ -115,7 +115,7 @@ impl Summary {
             reason: o.reason.to_string(),
             objective: o.objective,
             initial_guess_objective: plan.initial_objective,
-            solver: plan.solver.name().to_string(),
+            solver: if plan.polished { format!("{} + BFGS polish", plan.solver.name()) } else { plan.solver.name().to_string() },
             iterations: o.iterations,
             outer_iterations: o.outer_iterations,
             evaluations: o.evaluations,
