@@ -51,17 +51,6 @@ impl Run {
             })
             .collect()
     }
-    fn com_path(&self) -> Vec<Vec3> {
-        let m = &self.spec.model;
-        let mut data = Data::new(m);
-        self.samples
-            .iter()
-            .map(|s| {
-                kinematics::placements(m, &mut data, &s.q);
-                kinematics::center_of_mass(m, &data, false).unwrap()
-            })
-            .collect()
-    }
     /// Largest backward (−x) excursion of a frame from where it starts (m, ≥ 0).
     fn lean_back(&self, frame: &str) -> f64 {
         let path = self.frame_path(frame);
