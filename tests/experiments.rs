@@ -209,3 +209,20 @@ fn push_up() {
         assert!(f.z > 0.2 * weight && f.z < 1.5 * weight, "hand force {} N at t = {}", f.z, s.t);
     }
 }
+
+/// `mintorque examples` lists every task file of `examples/`, and each one parses.
+#[test]
+fn every_example_is_listed_and_parses() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let mut files: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter_map(|e| e.unwrap().file_name().to_str().and_then(|n| n.strip_suffix(".toml")).map(String::from))
+        .collect();
+    files.sort();
+    let listed: Vec<&str> = plan::examples::ALL.iter().map(|e| e.name).collect();
+    assert_eq!(files, listed);
+    for e in plan::examples::ALL {
+        Task::parse(e.text, &dir.join(format!("{}.toml", e.name))).unwrap_or_else(|err| panic!("{err}"));
+        assert!(!e.summary().is_empty());
+    }
+}

@@ -37,6 +37,17 @@ enum Command {
         #[arg(long, short)]
         quiet: bool,
     },
+    /// List the bundled examples (the paper's experiments), one line each.
+    Examples,
+    /// Integrate the forward dynamics under a plan's torques from its start state and report the drift from
+    /// the planned motion.
+    Simulate {
+        /// The task the plan was made for.
+        task: PathBuf,
+        /// RK4 steps over the motion.
+        #[arg(long, default_value_t = 4000)]
+        steps: usize,
+    },
     /// Inverse dynamics, its derivatives, H(q) and forward dynamics of a model at the states of a file
     /// (the reference data's JSON format), printed as JSON in the file's joint order.
     Dynamics {
@@ -131,6 +142,30 @@ fn run(cli: Cli) -> Result<ExitCode> {
         Command::Plan { task, out, solver, control_points, quiet } => {
             let converged = run_plan(&task, &out, solver, control_points, quiet)?;
             Ok(if converged { ExitCode::SUCCESS } else { ExitCode::from(NOT_CONVERGED) })
+        }
+        Command::Examples => {
+            for e in mintorque::plan::examples::ALL {
+                println!("{:<20} {}", e.name, e.summary());
+            }
+            println!("\nrun one with: mintorque plan examples/NAME.toml --out out/NAME");
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Simulate { task, steps } => {
+            let task = Task::load(&task)?;
+            let planned = plan::plan(&task.spec, task.solver, &task.settings, &mut |_| {})?;
+            let sim = plan::simulate::simulate(&task.spec, &planned, steps)?;
+            println!(
+                "plan {}; forward simulation with {} RK4 steps of {:.2e} s",
+                if planned.converged() { "converged" } else { "NOT converged" },
+                steps,
+                sim.step
+            );
+            for (j, d) in task.spec.model.joints[1..].iter().zip(&sim.max_drift) {
+                let (v, unit) =
+                    if j.kind == mintorque::model::JointKind::Prismatic { (*d * 1e3, "mm") } else { (d.to_degrees(), "°") };
+                println!("  {:<16} max drift {v:.4} {unit}", j.name);
+            }
+            Ok(ExitCode::SUCCESS)
         }
         Command::Dynamics { model, states, gravity, bench: do_bench } => {
             let model = load_model(&model)?;

@@ -2,6 +2,7 @@
 //! onto B-splines ([`transcription`]), solved by a [`crate::solve::Solver`], and returned as a [`Plan`]:
 //! the motion at any time, with an honest account of how the solve went.
 
+pub mod examples;
 pub mod simulate;
 pub mod spec;
 pub mod task;

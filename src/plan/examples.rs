@@ -1,0 +1,32 @@
+//! The paper's experiments as bundled task files (`examples/`), listed by `mintorque examples`.
+
+/// A bundled task file.
+pub struct Example {
+    pub name: &'static str,
+    pub text: &'static str,
+}
+
+impl Example {
+    /// The file's first comment line up to its colon: what the experiment is and where the paper has it.
+    pub fn summary(&self) -> String {
+        let first = self.text.lines().next().unwrap_or("").trim_start_matches('#').trim();
+        first.split(':').next().unwrap_or(first).trim().to_string()
+    }
+}
+
+pub const ALL: &[Example] = &[
+    Example { name: "arm_lift_earth", text: include_str!("../../examples/arm_lift_earth.toml") },
+    Example { name: "arm_lift_mars", text: include_str!("../../examples/arm_lift_mars.toml") },
+    Example { name: "arm_lift_space", text: include_str!("../../examples/arm_lift_space.toml") },
+    Example { name: "chin_up_earth", text: include_str!("../../examples/chin_up_earth.toml") },
+    Example { name: "chin_up_space", text: include_str!("../../examples/chin_up_space.toml") },
+    Example { name: "dip_down_space", text: include_str!("../../examples/dip_down_space.toml") },
+    Example { name: "double_pendulum", text: include_str!("../../examples/double_pendulum.toml") },
+    Example { name: "leg_lift", text: include_str!("../../examples/leg_lift.toml") },
+    Example { name: "pendulum", text: include_str!("../../examples/pendulum.toml") },
+    Example { name: "push_up", text: include_str!("../../examples/push_up.toml") },
+    Example { name: "two_arm_reach", text: include_str!("../../examples/two_arm_reach.toml") },
+    Example { name: "weight_lift_earth", text: include_str!("../../examples/weight_lift_earth.toml") },
+    Example { name: "weight_lift_mars", text: include_str!("../../examples/weight_lift_mars.toml") },
+    Example { name: "weight_lift_space", text: include_str!("../../examples/weight_lift_space.toml") },
+];
