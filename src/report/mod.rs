@@ -3,6 +3,7 @@
 //! of them were written).
 
 pub mod ergonomics;
+pub mod export;
 pub mod record;
 pub mod summary;
 
