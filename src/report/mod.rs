@@ -4,6 +4,7 @@
 
 pub mod ergonomics;
 pub mod export;
+pub mod plots;
 pub mod record;
 pub mod summary;
 
