@@ -2,6 +2,9 @@
 //! or not at all (every file goes to a temporary directory first and is renamed into place only when all
 //! of them were written).
 
+pub mod ergonomics;
+pub mod export;
+pub mod plots;
 pub mod record;
 pub mod summary;
 
@@ -23,8 +26,25 @@ pub fn sample_times(duration: f64, rate: f64) -> Vec<f64> {
     times
 }
 
+/// Every sample of `record` must hold one value of q, q̇, q̈ and τ per joint of `model` and one force per
+/// contact: the reports index them by joint without further checks.
+pub(crate) fn check_samples(model: &crate::Model, record: &record::PlanRecord) -> Result<()> {
+    let (nv, nc) = (model.nv(), record.contacts.len());
+    for (k, s) in record.samples.iter().enumerate() {
+        let lengths = [s.q.len(), s.qd.len(), s.qdd.len(), s.tau.len()];
+        if lengths.iter().any(|&n| n != nv) || s.contact_forces.len() != nc || !s.t.is_finite() {
+            return Err(Error::input(
+                "plan.json",
+                format!("samples[{k}]"),
+                format!("expected a finite time, {nv} values each of q, qd, qdd and tau (one per joint) and {nc} contact forces"),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Column units of a joint: (position, velocity, acceleration, effort) suffixes and the factor from SI.
-fn units(kind: JointKind) -> ([&'static str; 4], f64) {
+pub(crate) fn units(kind: JointKind) -> ([&'static str; 4], f64) {
     match kind {
         JointKind::Prismatic => (["q_m", "qd_m_s", "qdd_m_s2", "tau_N"], 1.0),
         _ => (["q_deg", "qd_deg_s", "qdd_deg_s2", "tau_Nm"], 180.0 / std::f64::consts::PI),

@@ -1,0 +1,6 @@
+#!/usr/bin/env bash
+# What the test suite needs beyond cargo: independent readers of the files mintorque writes.
+# CI runs this before the tests; run it once on a new machine. The tests fail (never skip) without them.
+set -euo pipefail
+# tests/report.rs reads exported BVH files back with Python's `bvh` package.
+python3 -m pip install --quiet --disable-pip-version-check --root-user-action=ignore 'bvh==0.3'

@@ -1,0 +1,349 @@
+//! Plots of a planned motion, after the paper's Figures 2–3: joint angle, velocity, acceleration and
+//! torque against time, one panel per joint, the initial guess dashed over the plan. Torque panels shade
+//! the band the joint's strength allows (±effort) and draw its edges; contact forces get their own file
+//! when the plan has contacts. Each plot is an SVG (drawn by `plotters`) and a PNG rendered from it (by
+//! `resvg`, with the system's fonts; without any installed font the PNG has no lettering).
+
+use super::record::{PlanRecord, SampleRecord};
+use crate::error::{Error, Result};
+use crate::model::{JointKind, Model};
+use plotters::element::DashedPathElement;
+use plotters::prelude::*;
+use resvg::{tiny_skia, usvg};
+use std::sync::{Arc, OnceLock};
+
+/// Width of one panel and height of one row of panels (SVG pixels).
+const PANEL_WIDTH: u32 = 520;
+const PANEL_HEIGHT: u32 = 240;
+const TITLE_HEIGHT: u32 = 44;
+/// PNGs are rendered at twice the SVG size, for legible lettering.
+const PNG_SCALE: f32 = 2.0;
+/// A strength limit further than this many times the largest |τ| is left off the torque panel's scale
+/// (it would squash the curves flat) and named in the caption instead.
+const LIMIT_ON_SCALE: f64 = 2.0;
+
+const PLANNED: RGBColor = RGBColor(31, 90, 170);
+const GUESS: RGBColor = RGBColor(200, 70, 40);
+const LIMIT: RGBColor = RGBColor(150, 40, 40);
+const ALLOWED_BAND: RGBColor = RGBColor(60, 160, 90);
+const FORCE_COLOURS: [RGBColor; 3] = [RGBColor(200, 60, 50), RGBColor(40, 150, 70), RGBColor(31, 90, 170)];
+
+/// What one plot file shows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Quantity {
+    Position,
+    Velocity,
+    Acceleration,
+    Torque,
+}
+
+impl Quantity {
+    const ALL: [Quantity; 4] = [Quantity::Position, Quantity::Velocity, Quantity::Acceleration, Quantity::Torque];
+
+    fn file_stem(self) -> &'static str {
+        match self {
+            Quantity::Position => "q",
+            Quantity::Velocity => "qd",
+            Quantity::Acceleration => "qdd",
+            Quantity::Torque => "tau",
+        }
+    }
+
+    fn title(self) -> &'static str {
+        match self {
+            Quantity::Position => "Joint displacement",
+            Quantity::Velocity => "Joint velocity",
+            Quantity::Acceleration => "Joint acceleration",
+            Quantity::Torque => "Active joint torque",
+        }
+    }
+
+    /// The unit shown and the factor from SI.
+    fn unit(self, kind: JointKind) -> (&'static str, f64) {
+        let degrees = 180.0 / std::f64::consts::PI;
+        match (self, kind == JointKind::Prismatic) {
+            (Quantity::Position, false) => ("deg", degrees),
+            (Quantity::Velocity, false) => ("deg/s", degrees),
+            (Quantity::Acceleration, false) => ("deg/s²", degrees),
+            (Quantity::Torque, false) => ("N·m", 1.0),
+            (Quantity::Position, true) => ("m", 1.0),
+            (Quantity::Velocity, true) => ("m/s", 1.0),
+            (Quantity::Acceleration, true) => ("m/s²", 1.0),
+            (Quantity::Torque, true) => ("N", 1.0),
+        }
+    }
+
+    fn value(self, s: &SampleRecord, i: usize) -> f64 {
+        match self {
+            Quantity::Position => s.q[i],
+            Quantity::Velocity => s.qd[i],
+            Quantity::Acceleration => s.qdd[i],
+            Quantity::Torque => s.tau[i],
+        }
+    }
+}
+
+/// Every plot of `record` as `(file name, bytes)`: `q`, `qd`, `qdd`, `tau` and, with contacts,
+/// `contact_forces`, each as `.svg` and `.png`. `guess` holds the initial guess sampled like the plan
+/// (its curves are drawn dashed); pass `None` to leave it out.
+pub fn plots(model: &Model, record: &PlanRecord, guess: Option<&[SampleRecord]>) -> Result<Vec<(String, Vec<u8>)>> {
+    let mut files = Vec::new();
+    for (name, svg) in plot_svgs(model, record, guess)? {
+        let png = svg_to_png(&svg)?;
+        let stem = name.trim_end_matches(".svg").to_string();
+        files.push((name, svg.into_bytes()));
+        files.push((format!("{stem}.png"), png));
+    }
+    Ok(files)
+}
+
+/// The SVG plots alone, as `(file name, SVG text)`.
+pub fn plot_svgs(model: &Model, record: &PlanRecord, guess: Option<&[SampleRecord]>) -> Result<Vec<(String, String)>> {
+    super::check_samples(model, record)?;
+    if let Some(g) = guess {
+        check_guess(model, g)?;
+    }
+    if record.samples.is_empty() {
+        return Err(Error::input("plan.json", "samples", "the plan holds no samples to plot"));
+    }
+    let mut files = Vec::new();
+    if model.nv() > 0 {
+        for quantity in Quantity::ALL {
+            files.push((format!("{}.svg", quantity.file_stem()), joint_plot(model, record, guess, quantity)?));
+        }
+    }
+    if !record.contacts.is_empty() {
+        files.push(("contact_forces.svg".to_string(), contact_plot(record)?));
+    }
+    Ok(files)
+}
+
+fn check_guess(model: &Model, guess: &[SampleRecord]) -> Result<()> {
+    let nv = model.nv();
+    match guess.iter().position(|s| [s.q.len(), s.qd.len(), s.qdd.len(), s.tau.len()].iter().any(|&n| n != nv)) {
+        Some(k) => {
+            Err(Error::input("initial guess", format!("samples[{k}]"), format!("expected {nv} values of q, qd, qdd and tau")))
+        }
+        None => Ok(()),
+    }
+}
+
+fn drawing_error(e: impl std::fmt::Display) -> Error {
+    Error::input("plots", "drawing", e.to_string())
+}
+
+/// Rows and columns of panels: one column for a few joints, two beyond.
+fn grid(panels: usize) -> (usize, usize) {
+    let columns = if panels <= 3 { 1 } else { 2 };
+    (panels.div_ceil(columns).max(1), columns)
+}
+
+fn canvas_size((rows, columns): (usize, usize)) -> (u32, u32) {
+    (PANEL_WIDTH * columns as u32, PANEL_HEIGHT * rows as u32 + TITLE_HEIGHT)
+}
+
+/// `[lo, hi]` of `values` widened by 5 % (and to ±1 around a constant), for a y axis.
+fn padded_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    let (lo, hi) =
+        values.filter(|v| v.is_finite()).fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)));
+    if !lo.is_finite() {
+        return (-1.0, 1.0);
+    }
+    let pad = if hi - lo > 1e-12 { 0.05 * (hi - lo) } else { 1.0f64.max(0.05 * hi.abs()) };
+    (lo - pad, hi + pad)
+}
+
+fn time_range(record: &PlanRecord) -> (f64, f64) {
+    let first = record.samples.first().map_or(0.0, |s| s.t);
+    let last = record.samples.last().map_or(1.0, |s| s.t);
+    if last > first {
+        (first, last)
+    } else {
+        (first, first + 1.0)
+    }
+}
+
+/// One quantity for every joint, a panel each.
+fn joint_plot(model: &Model, record: &PlanRecord, guess: Option<&[SampleRecord]>, quantity: Quantity) -> Result<String> {
+    let layout = grid(model.nv());
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, canvas_size(layout)).into_drawing_area();
+        root.fill(&WHITE).map_err(drawing_error)?;
+        let title = format!("{} — {}", quantity.title(), record.model_name);
+        let body = root.titled(&title, ("sans-serif", 22)).map_err(drawing_error)?;
+        let panels = body.split_evenly(layout);
+        for (i, panel) in panels.iter().enumerate().take(model.nv()) {
+            joint_panel(panel, model, record, guess, quantity, i)?;
+        }
+        root.present().map_err(drawing_error)?;
+    }
+    Ok(svg)
+}
+
+fn joint_panel<DB: DrawingBackend>(
+    panel: &DrawingArea<DB, plotters::coord::Shift>,
+    model: &Model,
+    record: &PlanRecord,
+    guess: Option<&[SampleRecord]>,
+    quantity: Quantity,
+    i: usize,
+) -> Result<()> {
+    let joint = &model.joints[i + 1];
+    let (unit, factor) = quantity.unit(joint.kind);
+    let series =
+        |samples: &[SampleRecord]| -> Vec<(f64, f64)> { samples.iter().map(|s| (s.t, quantity.value(s, i) * factor)).collect() };
+    let planned = series(&record.samples);
+    let guessed = guess.map(series).unwrap_or_default();
+    let limit = (quantity == Quantity::Torque).then_some(joint.limits.effort).filter(|e| e.is_finite() && *e > 0.0);
+    let peak = planned.iter().chain(&guessed).map(|p| p.1.abs()).fold(0.0, f64::max);
+    let limit_on_scale = limit.filter(|&l| l <= LIMIT_ON_SCALE * peak.max(1e-9));
+    let mut caption = format!("{} ({unit})", joint.name);
+    if let (Some(l), None) = (limit, limit_on_scale) {
+        caption.push_str(&format!(" — strength ±{l:.0} {unit}, off scale"));
+    }
+    let band_edges = limit_on_scale.map_or(vec![], |l| vec![-l, l]);
+    let y = padded_range(planned.iter().chain(&guessed).map(|p| p.1).chain(band_edges));
+    let x = time_range(record);
+    let mut chart = ChartBuilder::on(panel)
+        .caption(caption, ("sans-serif", 15))
+        .margin(6)
+        .x_label_area_size(34)
+        .y_label_area_size(58)
+        .build_cartesian_2d(x.0..x.1, y.0..y.1)
+        .map_err(drawing_error)?;
+    chart
+        .configure_mesh()
+        .x_desc("time (s)")
+        .y_desc(unit)
+        .x_labels(6)
+        .y_labels(5)
+        .light_line_style(WHITE.mix(0.0))
+        .draw()
+        .map_err(drawing_error)?;
+    if let Some(l) = limit_on_scale {
+        draw_strength_band(&mut chart, x, l, i == 0)?;
+    }
+    let line = chart.draw_series(LineSeries::new(planned, PLANNED.stroke_width(2))).map_err(drawing_error)?;
+    line.label("planned").legend(|(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], PLANNED.stroke_width(2)));
+    if !guessed.is_empty() {
+        let dashed = chart.draw_series(DashedLineSeries::new(guessed, 6, 4, GUESS.stroke_width(2))).map_err(drawing_error)?;
+        dashed
+            .label("initial guess")
+            .legend(|(x, y)| DashedPathElement::new(vec![(x, y), (x + 22, y)], 5, 3, GUESS.stroke_width(2)));
+    }
+    if i == 0 {
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK.mix(0.4))
+            .label_font(("sans-serif", 12))
+            .draw()
+            .map_err(drawing_error)?;
+    }
+    Ok(())
+}
+
+/// The band `|τ| ≤ limit` shaded, and its edges.
+fn draw_strength_band<DB: DrawingBackend>(
+    chart: &mut ChartContext<DB, Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>>,
+    (t0, t1): (f64, f64),
+    limit: f64,
+    with_legend: bool,
+) -> Result<()> {
+    chart
+        .draw_series(std::iter::once(Rectangle::new([(t0, -limit), (t1, limit)], ALLOWED_BAND.mix(0.12).filled())))
+        .map_err(drawing_error)?;
+    for edge in [limit, -limit] {
+        let drawn = chart
+            .draw_series(LineSeries::new([(t0, edge), (t1, edge)], LIMIT.mix(0.8).stroke_width(1)))
+            .map_err(drawing_error)?;
+        if with_legend && edge > 0.0 {
+            drawn.label("strength limit").legend(|(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], LIMIT.stroke_width(1)));
+        }
+    }
+    Ok(())
+}
+
+/// The force of every contact on the figure, a panel each: x, y, z (world axes, N).
+fn contact_plot(record: &PlanRecord) -> Result<String> {
+    let layout = grid(record.contacts.len());
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, canvas_size(layout)).into_drawing_area();
+        root.fill(&WHITE).map_err(drawing_error)?;
+        let title = format!("Contact forces on the figure — {}", record.model_name);
+        let body = root.titled(&title, ("sans-serif", 22)).map_err(drawing_error)?;
+        for (c, panel) in body.split_evenly(layout).iter().enumerate().take(record.contacts.len()) {
+            let x = time_range(record);
+            let y = padded_range(record.samples.iter().flat_map(|s| s.contact_forces[c]));
+            let mut chart = ChartBuilder::on(panel)
+                .caption(format!("{} (N, world axes)", record.contacts[c].name), ("sans-serif", 15))
+                .margin(6)
+                .x_label_area_size(34)
+                .y_label_area_size(58)
+                .build_cartesian_2d(x.0..x.1, y.0..y.1)
+                .map_err(drawing_error)?;
+            chart
+                .configure_mesh()
+                .x_desc("time (s)")
+                .y_desc("N")
+                .light_line_style(WHITE.mix(0.0))
+                .draw()
+                .map_err(drawing_error)?;
+            for (axis, (name, colour)) in ["x", "y", "z"].iter().zip(FORCE_COLOURS).enumerate() {
+                let points: Vec<(f64, f64)> = record.samples.iter().map(|s| (s.t, s.contact_forces[c][axis])).collect();
+                let drawn = chart.draw_series(LineSeries::new(points, colour.stroke_width(2))).map_err(drawing_error)?;
+                drawn
+                    .label(format!("f{name}"))
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], colour.stroke_width(2)));
+            }
+            chart
+                .configure_series_labels()
+                .position(SeriesLabelPosition::UpperRight)
+                .background_style(WHITE.mix(0.85))
+                .border_style(BLACK.mix(0.4))
+                .label_font(("sans-serif", 12))
+                .draw()
+                .map_err(drawing_error)?;
+        }
+        root.present().map_err(drawing_error)?;
+    }
+    Ok(svg)
+}
+
+/// The system's fonts, loaded once; the generic `sans-serif` that plotters writes is pointed at an
+/// installed sans face (fontdb's own default, Arial, is rarely installed on Linux).
+fn fonts() -> Arc<usvg::fontdb::Database> {
+    static FONTS: OnceLock<Arc<usvg::fontdb::Database>> = OnceLock::new();
+    FONTS
+        .get_or_init(|| {
+            let mut db = usvg::fontdb::Database::new();
+            db.load_system_fonts();
+            let families: Vec<String> = db.faces().flat_map(|f| f.families.iter().map(|(name, _)| name.clone())).collect();
+            let preferred = ["DejaVu Sans", "Liberation Sans", "Noto Sans", "Arial", "Helvetica"];
+            let sans = preferred
+                .iter()
+                .find(|p| families.iter().any(|f| f == *p))
+                .map(|p| p.to_string())
+                .or_else(|| families.first().cloned());
+            if let Some(family) = sans {
+                db.set_sans_serif_family(family);
+            }
+            Arc::new(db)
+        })
+        .clone()
+}
+
+/// Renders an SVG to PNG at [`PNG_SCALE`] times its size, on its own background.
+pub fn svg_to_png(svg: &str) -> Result<Vec<u8>> {
+    let options = usvg::Options { fontdb: fonts(), ..usvg::Options::default() };
+    let tree = usvg::Tree::from_str(svg, &options).map_err(|e| Error::input("plots", "svg", e.to_string()))?;
+    let size =
+        tree.size().to_int_size().scale_by(PNG_SCALE).ok_or_else(|| Error::input("plots", "png", "the picture has no size"))?;
+    let mut pixmap = tiny_skia::Pixmap::new(size.width(), size.height())
+        .ok_or_else(|| Error::input("plots", "png", "the picture is too large"))?;
+    resvg::render(&tree, tiny_skia::Transform::from_scale(PNG_SCALE, PNG_SCALE), &mut pixmap.as_mut());
+    pixmap.encode_png().map_err(|e| Error::input("plots", "png", e.to_string()))
+}

@@ -1,0 +1,607 @@
+//! Reports from a plan directory: ergonomics against analytic answers, every export format read back by
+//! an independent parser (glTF by the `gltf` crate with validation, BVH by Python's `bvh` package, `.mot`
+//! and CSV by hand), plots, and bad input. Records are synthetic (known motions on real models), so no
+//! test needs a solve.
+
+use mintorque::model::human::{self, HumanParams, Structure};
+use mintorque::model::{Body, Joint, JointKind, JointLimits, Model, Passive};
+use mintorque::report::ergonomics::{ergonomics, intervals_above, text_table};
+use mintorque::report::export::{export, Format};
+use mintorque::report::plots::{plot_svgs, plots};
+use mintorque::report::record::{load_plan_dir, ContactRecord, PlanRecord, SampleRecord, FORMAT};
+use mintorque::spatial::{axis_angle, Inertia, Mat3, Transform, Vec3};
+use std::collections::BTreeMap;
+use std::f64::consts::PI;
+use std::path::PathBuf;
+use std::process::Command;
+
+// ---- Synthetic records ----
+
+/// A record of `model` sampled at `times`, with `q(t)`, `q̇(t)`, `q̈(t)` and `τ(t)` given per joint.
+fn record(model: &Model, times: &[f64], motion: impl Fn(usize, f64) -> [f64; 4]) -> PlanRecord {
+    let nv = model.nv();
+    let samples = times
+        .iter()
+        .map(|&t| {
+            let v: Vec<[f64; 4]> = (0..nv).map(|i| motion(i, t)).collect();
+            SampleRecord {
+                t,
+                q: v.iter().map(|x| x[0]).collect(),
+                qd: v.iter().map(|x| x[1]).collect(),
+                qdd: v.iter().map(|x| x[2]).collect(),
+                tau: v.iter().map(|x| x[3]).collect(),
+                contact_forces: vec![],
+            }
+        })
+        .collect();
+    PlanRecord {
+        format: FORMAT.into(),
+        model_name: model.name.clone(),
+        joint_names: model.joint_names().iter().map(|s| s.to_string()).collect(),
+        duration: times.last().copied().unwrap_or(0.0),
+        gravity: [0.0, 0.0, -9.81],
+        n_ctrl: 0,
+        ctrl: vec![],
+        lambda_ctrl: vec![],
+        contacts: vec![],
+        support: None,
+        converged: true,
+        samples,
+    }
+}
+
+fn grid(duration: f64, steps: usize) -> Vec<f64> {
+    (0..=steps).map(|k| duration * k as f64 / steps as f64).collect()
+}
+
+/// Joint `i` swings as `aᵢ sin(ωt + φᵢ)` with different amplitudes and phases, large enough to pass a
+/// half turn on some joints (so that unwrapped angles are tested).
+fn swing(i: usize, t: f64) -> [f64; 4] {
+    let (a, w, phase) = (0.4 + 0.35 * i as f64, 2.0 * PI, 0.3 * i as f64);
+    let s = w * t + phase;
+    [a * s.sin(), a * w * s.cos(), -a * w * w * s.sin(), 10.0 * (i as f64 + 1.0) * s.cos()]
+}
+
+/// One revolute about y with effort `effort`, hanging from a massless base.
+fn one_joint(effort: f64) -> Model {
+    let mut m = Model::new("one_joint", "base");
+    let limits = JointLimits { effort, ..JointLimits::default() };
+    m.add_body(
+        Joint {
+            name: "elbow".into(),
+            kind: JointKind::Revolute,
+            parent: 0,
+            placement: Transform::IDENTITY,
+            axis: Vec3::y(),
+            limits,
+            passive: Passive::default(),
+            group: None,
+        },
+        Body {
+            name: "forearm".into(),
+            inertia: Inertia::new(1.0, Vec3::new(0.0, 0.0, -0.2), Mat3::identity() * 0.01),
+            shapes: vec![],
+        },
+    );
+    m
+}
+
+/// A revolute about a tilted axis (not a coordinate axis), then a prismatic joint sliding along x, then a
+/// revolute about −x: Euler channels, position channels, sticks.
+fn tilted_and_sliding() -> Model {
+    let mut m = Model::new("tilted", "base");
+    let body = |name: &str| Body {
+        name: name.into(),
+        inertia: Inertia::new(1.0, Vec3::new(0.0, 0.0, -0.3), Mat3::identity() * 0.02),
+        shapes: vec![],
+    };
+    let joint = |name: &str, kind, parent, at: Vec3, axis: Vec3| Joint {
+        name: name.into(),
+        kind,
+        parent,
+        placement: Transform::from_translation(at),
+        axis: axis.normalize(),
+        limits: JointLimits::default(),
+        passive: Passive::default(),
+        group: None,
+    };
+    let a = m.add_body(joint("tilted", JointKind::Revolute, 0, Vec3::new(0.0, 0.0, 1.0), Vec3::new(1.0, 2.0, 2.0)), body("arm"));
+    let b = m.add_body(joint("slide", JointKind::Prismatic, a, Vec3::new(0.0, 0.0, -0.6), Vec3::x()), body("carriage"));
+    m.add_body(joint("twist", JointKind::Revolute, b, Vec3::new(0.1, 0.0, -0.2), -Vec3::x()), body("hand"));
+    m
+}
+
+fn human_model(structure: Structure) -> Model {
+    human::build(structure, HumanParams::default()).unwrap()
+}
+
+/// A scratch directory for this test process.
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("mintorque-report-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn assert_close(got: f64, want: f64, tol: f64, what: &str) {
+    assert!((got - want).abs() <= tol, "{what}: got {got}, want {want} (tolerance {tol})");
+}
+
+// ---- Ergonomics ----
+
+#[test]
+fn time_above_the_limit_of_a_sine_torque_matches_the_analytic_crossings() {
+    // τ = A sin(ωt) with A = 10 N·m, ω = 2π rad/s over one period; limit 6 N·m: |τ| > 6 on
+    // (s, ½ − s) and (½ + s, 1 − s) with s = asin(0.6)/2π.
+    let (amplitude, limit) = (10.0, 6.0);
+    let model = one_joint(limit);
+    let rec = record(&model, &grid(1.0, 1000), |_, t| [0.1 * t, 0.1, 0.0, amplitude * (2.0 * PI * t).sin()]);
+    let e = ergonomics(&model, &rec, &BTreeMap::new()).unwrap();
+    let j = &e.joints[0];
+    let s = (limit / amplitude).asin() / (2.0 * PI);
+    let want = [[s, 0.5 - s], [0.5 + s, 1.0 - s]];
+    assert_eq!(j.intervals_above_limit.len(), 2, "{:?}", j.intervals_above_limit);
+    for (got, want) in j.intervals_above_limit.iter().zip(want) {
+        assert_close(got[0], want[0], 1e-5, "interval start");
+        assert_close(got[1], want[1], 1e-5, "interval end");
+    }
+    assert_close(j.time_above_limit_s, 2.0 * (0.5 - 2.0 * s), 2e-5, "total time above");
+    assert_eq!(j.strength_limit, Some(limit));
+    assert_eq!(j.strength_source, Some("model effort limit"));
+    assert_close(j.peak_abs_torque, amplitude, 1e-4, "peak");
+    assert!(j.peak_time_s == 0.25 || j.peak_time_s == 0.75, "peak at {}", j.peak_time_s);
+    assert_close(j.posture_at_peak["elbow"], (0.1 * j.peak_time_s).to_degrees(), 1e-9, "posture in degrees");
+    assert_close(j.peak_fraction_of_limit.unwrap(), amplitude / limit, 1e-4, "fraction of limit");
+
+    // An override takes the place of the model's limit.
+    let overrides = BTreeMap::from([("elbow".to_string(), 8.0)]);
+    let e = ergonomics(&model, &rec, &overrides).unwrap();
+    let s = 0.8f64.asin() / (2.0 * PI);
+    assert_eq!(e.joints[0].strength_source, Some("override"));
+    assert_close(e.joints[0].time_above_limit_s, 2.0 * (0.5 - 2.0 * s), 2e-5, "time above the override");
+    let table = text_table(&e);
+    assert!(table.contains("elbow above its strength:"), "{table}");
+}
+
+#[test]
+fn crossing_times_are_exact_for_piecewise_linear_torques() {
+    // One segment that goes from above +1 to below −1: two pieces, in time order.
+    assert_eq!(intervals_above(&[0.0, 1.0], &[2.0, -2.0], 1.0), vec![[0.0, 0.25], [0.75, 1.0]]);
+    // Pieces that touch across samples are merged.
+    assert_eq!(intervals_above(&[0.0, 1.0, 2.0, 3.0], &[0.0, 2.0, 2.0, 0.0], 1.0), vec![[0.5, 2.5]]);
+    assert!(intervals_above(&[0.0, 1.0], &[1.0, 1.0], 1.0).is_empty(), "at the limit is not above it");
+}
+
+#[test]
+fn work_of_a_constant_torque_at_constant_speed_is_torque_times_speed_times_time() {
+    // τ = k = 3 N·m, q̇ = c = 2 rad/s for T = 2 s: W = kcT = 12 J, power 6 W throughout.
+    let model = one_joint(f64::INFINITY);
+    let rec = record(&model, &grid(2.0, 50), |_, t| [2.0 * t, 2.0, 0.0, 3.0]);
+    let e = ergonomics(&model, &rec, &BTreeMap::new()).unwrap();
+    assert_close(e.joints[0].absolute_work_j, 12.0, 1e-12, "absolute work");
+    assert_close(e.total_positive_work_j, 12.0, 1e-12, "positive work");
+    assert_close(e.joints[0].peak_power_w, 6.0, 1e-12, "peak power");
+    assert_eq!(e.joints[0].strength_limit, None);
+    assert_eq!(e.joints[0].time_above_limit_s.to_bits(), 0.0f64.to_bits(), "no limit, no time above it (and not −0)");
+    assert_eq!(e.peak_power.as_ref().map(|p| p.joint.as_str()), Some("elbow"));
+
+    // Braking (τ against q̇) does negative work: none of it is positive.
+    let braking = record(&model, &grid(2.0, 50), |_, t| [2.0 * t, 2.0, 0.0, -3.0]);
+    let e = ergonomics(&model, &braking, &BTreeMap::new()).unwrap();
+    assert_close(e.joints[0].absolute_work_j, 12.0, 1e-12, "absolute work when braking");
+    assert_close(e.total_positive_work_j, 0.0, 1e-12, "positive work when braking");
+
+    // Power changing sign between two samples: −½ → ½ W over 1 s gives ¼ J absolute, ⅛ J positive.
+    let crossing = record(&model, &[0.0, 1.0], |_, t| [0.0, t - 0.5, 0.0, 1.0]);
+    let e = ergonomics(&model, &crossing, &BTreeMap::new()).unwrap();
+    assert_close(e.joints[0].absolute_work_j, 0.25, 1e-15, "absolute work across a sign change");
+    assert_close(e.joints[0].positive_work_j, 0.125, 1e-15, "positive work across a sign change");
+}
+
+#[test]
+fn ergonomics_of_the_human_uses_its_documented_strengths_and_serialises() {
+    let model = human_model(Structure::Sagittal);
+    let rec = record(&model, &grid(1.0, 100), swing);
+    let e = ergonomics(&model, &rec, &BTreeMap::new()).unwrap();
+    for (j, joint) in e.joints.iter().zip(&model.joints[1..]) {
+        assert_eq!(j.strength_limit, Some(joint.limits.effort), "{}", j.name);
+        assert_eq!(j.posture_at_peak.len(), model.nv());
+    }
+    let json = serde_json::to_value(&e).unwrap();
+    assert!(json["joints"][0]["intervals_above_limit"].is_array());
+    assert!(json["total_positive_work_j"].is_number());
+}
+
+#[test]
+fn ergonomics_refuses_overrides_for_unknown_joints_and_bad_values() {
+    let model = one_joint(10.0);
+    let rec = record(&model, &grid(1.0, 10), |_, _| [0.0; 4]);
+    let unknown = ergonomics(&model, &rec, &BTreeMap::from([("knee".to_string(), 5.0)])).unwrap_err().to_string();
+    assert!(unknown.contains("no joint called \"knee\"") && unknown.contains("elbow"), "{unknown}");
+    let negative = ergonomics(&model, &rec, &BTreeMap::from([("elbow".to_string(), -5.0)])).unwrap_err().to_string();
+    assert!(negative.contains("positive"), "{negative}");
+}
+
+// ---- Export: .mot and CSV ----
+
+#[test]
+fn mot_has_the_opensim_header_and_angles_in_degrees() {
+    let model = human_model(Structure::Sagittal);
+    let rec = record(&model, &grid(1.0, 40), swing);
+    let (name, bytes) = export(&model, &rec, Format::Mot).unwrap();
+    assert_eq!(name, "human_sagittal.mot");
+    let text = String::from_utf8(bytes).unwrap();
+    let (header, table) = text.split_once("endheader\n").expect("an endheader line");
+    let keys: BTreeMap<&str, &str> = header.lines().filter_map(|l| l.split_once('=')).collect();
+    assert!(!header.lines().next().unwrap().contains('='), "the first line names the motion");
+    assert_eq!(keys["version"], "1");
+    assert_eq!(keys["nRows"], "41");
+    assert_eq!(keys["nColumns"], (model.nv() + 1).to_string());
+    assert_eq!(keys["inDegrees"], "yes");
+    let mut lines = table.lines();
+    let columns: Vec<&str> = lines.next().unwrap().split('\t').collect();
+    assert_eq!(columns[0], "time");
+    assert_eq!(columns[1..], model.joint_names()[..]);
+    let rows: Vec<Vec<f64>> = lines.map(|l| l.split('\t').map(|v| v.parse().unwrap()).collect()).collect();
+    assert_eq!(rows.len(), 41);
+    for k in [0, 13, 40] {
+        assert_close(rows[k][0], rec.samples[k].t, 1e-6, "time");
+        for i in 0..model.nv() {
+            assert_close(rows[k][i + 1], rec.samples[k].q[i].to_degrees(), 1e-8, "angle");
+        }
+    }
+}
+
+#[test]
+fn csv_has_every_joints_columns_with_units() {
+    let model = tilted_and_sliding();
+    let mut rec = record(&model, &grid(1.0, 20), swing);
+    rec.contacts = vec![ContactRecord { name: "grip".into(), frame: "hand".into(), target: [0.0; 3], normal: None }];
+    for s in &mut rec.samples {
+        s.contact_forces = vec![[1.0, 2.0, s.t]];
+    }
+    let (name, bytes) = export(&model, &rec, Format::from_name("CSV").unwrap()).unwrap();
+    assert_eq!(name, "tilted.csv");
+    let text = String::from_utf8(bytes).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    assert_eq!(header[..5], ["time_s", "tilted.q_deg", "tilted.qd_deg_s", "tilted.qdd_deg_s2", "tilted.tau_Nm"]);
+    assert_eq!(header[5..9], ["slide.q_m", "slide.qd_m_s", "slide.qdd_m_s2", "slide.tau_N"]);
+    assert_eq!(header[header.len() - 3..], ["grip.fx_N", "grip.fy_N", "grip.fz_N"]);
+    let row: Vec<f64> = lines.nth(7).unwrap().split(',').map(|v| v.parse().unwrap()).collect();
+    let s = &rec.samples[7];
+    assert_close(row[1], s.q[0].to_degrees(), 1e-8, "tilted.q_deg");
+    assert_close(row[3], s.qdd[0].to_degrees(), 1e-6, "tilted.qdd_deg_s2");
+    assert_close(row[5], s.q[1], 1e-9, "slide.q_m");
+    assert_close(row[8], s.tau[1], 1e-9, "slide.tau_N");
+    assert_close(row[row.len() - 1], s.t, 1e-9, "grip.fz_N");
+}
+
+// ---- Export: glTF ----
+
+/// One node's keyframes: rotations (x, y, z, w) and translations.
+#[derive(Default)]
+struct NodeKeys {
+    rotations: Vec<[f32; 4]>,
+    translations: Vec<[f32; 3]>,
+}
+
+/// The animated rotations and translations of a `.glb`, read by the `gltf` crate (which validates it).
+struct GltfMotion {
+    times: Vec<f32>,
+    /// Node name → its keyframes.
+    channels: BTreeMap<String, NodeKeys>,
+    meshes_on: Vec<String>,
+}
+
+fn read_glb(bytes: &[u8]) -> GltfMotion {
+    let doc = gltf::Gltf::from_slice(bytes).expect("a valid glTF 2.0 binary");
+    let blob = doc.blob.clone().expect("a BIN chunk");
+    let animation = doc.animations().next().expect("an animation");
+    let mut motion = GltfMotion { times: vec![], channels: BTreeMap::new(), meshes_on: vec![] };
+    for channel in animation.channels() {
+        let reader = channel.reader(|_| Some(&blob));
+        motion.times = reader.read_inputs().expect("keyframe times").collect();
+        let node = channel.target().node().name().unwrap_or_default().to_string();
+        let entry = motion.channels.entry(node).or_default();
+        match reader.read_outputs().expect("keyframe values") {
+            gltf::animation::util::ReadOutputs::Rotations(r) => entry.rotations = r.into_f32().collect(),
+            gltf::animation::util::ReadOutputs::Translations(t) => entry.translations = t.collect(),
+            _ => panic!("only rotations and translations are animated"),
+        }
+    }
+    motion.meshes_on = doc.nodes().filter(|n| n.mesh().is_some()).filter_map(|n| n.name().map(String::from)).collect();
+    motion
+}
+
+/// The joint angle about `axis` of the rotation `placementᵀ·R(quaternion)`, within (−π, π].
+fn angle_about(quaternion: [f32; 4], placement: &Mat3, axis: &Vec3) -> f64 {
+    let [x, y, z, w] = quaternion.map(f64::from);
+    let r = nalgebra::UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(w, x, y, z)).to_rotation_matrix().into_inner();
+    let relative = placement.transpose() * r;
+    let (s, c) = ((relative - relative.transpose()) * 0.5, (relative.trace() - 1.0) / 2.0);
+    let sin_about = Vec3::new(s[(2, 1)], s[(0, 2)], s[(1, 0)]).dot(axis);
+    sin_about.atan2(c)
+}
+
+fn wrapped(a: f64) -> f64 {
+    let w = a.rem_euclid(2.0 * PI);
+    if w > PI {
+        w - 2.0 * PI
+    } else {
+        w
+    }
+}
+
+#[test]
+fn gltf_reads_back_valid_with_the_joint_angles_of_the_plan() {
+    for model in [human_model(Structure::FreeArms), tilted_and_sliding()] {
+        let rec = record(&model, &grid(1.0, 60), swing);
+        let (name, bytes) = export(&model, &rec, Format::from_name("glb").unwrap()).unwrap();
+        assert!(name.ends_with(".glb"));
+        let motion = read_glb(&bytes);
+        assert_eq!(motion.times.len(), rec.samples.len());
+        for (i, joint) in model.joints.iter().enumerate().skip(1) {
+            let body = &model.bodies[i].name;
+            let NodeKeys { rotations, translations } = &motion.channels[body];
+            for k in [0, 17, 45, 60] {
+                let q = rec.samples[k].q[i - 1];
+                match joint.kind {
+                    JointKind::Prismatic => {
+                        let want = joint.placement.translation + joint.axis * q;
+                        let got = Vec3::new(translations[k][0].into(), translations[k][1].into(), translations[k][2].into());
+                        assert!((got - want).norm() < 1e-6, "{} at frame {k}: {got} vs {want}", joint.name);
+                    }
+                    _ => {
+                        let got = angle_about(rotations[k], &joint.placement.rotation, &joint.axis);
+                        assert_close(wrapped(got - q), 0.0, 1e-6, &format!("{} at frame {k}", joint.name));
+                    }
+                }
+            }
+        }
+        // Every body with shapes, and every body without but with a segment to draw, has a mesh.
+        for body in &model.bodies {
+            if !body.shapes.is_empty() || body.inertia.mass > 0.0 {
+                assert!(motion.meshes_on.contains(&body.name), "{} has no mesh", body.name);
+            }
+        }
+    }
+}
+
+// ---- Export: BVH, read back by Python's `bvh` package ----
+
+const BVH_READER: &str = r#"
+import json, sys
+from bvh import Bvh
+with open(sys.argv[1]) as f:
+    mocap = Bvh(f.read())
+frames = [int(k) for k in sys.argv[2].split(',')]
+joints = []
+for name in mocap.get_joints_names():
+    channels = mocap.joint_channels(name)
+    parent = mocap.joint_parent(name)
+    joints.append({
+        'name': name,
+        'parent': parent.name if parent is not None else None,
+        'offset': list(mocap.joint_offset(name)),
+        'channels': channels,
+        'values': [mocap.frame_joint_channels(k, name, channels) for k in frames],
+    })
+print(json.dumps({'frames': mocap.nframes, 'frame_time': mocap.frame_time, 'joints': joints}))
+"#;
+
+/// Python's `bvh` package's reading of `path` at `frames`. Fails (never skips) without python3 or the
+/// package: `scripts/test-deps.sh` installs it, and CI runs that script first.
+fn read_bvh_with_python(path: &std::path::Path, frames: &[usize]) -> serde_json::Value {
+    let frames: Vec<String> = frames.iter().map(|k| k.to_string()).collect();
+    let output = Command::new("python3")
+        .arg("-c")
+        .arg(BVH_READER)
+        .arg(path)
+        .arg(frames.join(","))
+        .output()
+        .expect("python3 is needed to read BVH files back (see scripts/test-deps.sh)");
+    assert!(
+        output.status.success(),
+        "Python's bvh package could not read the file (install it with `bash scripts/test-deps.sh`):\n{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    serde_json::from_slice(&output.stdout).unwrap()
+}
+
+/// Model (Z up) to BVH (Y up).
+fn y_up() -> Mat3 {
+    Mat3::new(1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, -1.0, 0.0)
+}
+
+/// `R = R_c1(v1)·R_c2(v2)·R_c3(v3)` for rotation channels named like "Zrotation" (degrees).
+fn rotation_from_channels(channels: &[String], values: &[f64]) -> Mat3 {
+    channels.iter().zip(values).filter(|(c, _)| c.ends_with("rotation")).fold(Mat3::identity(), |r, (c, v)| {
+        let axis = match &c[..1] {
+            "X" => Vec3::x(),
+            "Y" => Vec3::y(),
+            _ => Vec3::z(),
+        };
+        r * axis_angle(&axis, v.to_radians())
+    })
+}
+
+fn strings(v: &serde_json::Value) -> Vec<String> {
+    v.as_array().unwrap().iter().map(|s| s.as_str().unwrap().to_string()).collect()
+}
+
+fn floats(v: &serde_json::Value) -> Vec<f64> {
+    v.as_array().unwrap().iter().map(|s| s.as_f64().unwrap()).collect()
+}
+
+/// The model joints a BVH joint stands for: the joint of that name, or the revolutes of that group.
+fn joints_named(model: &Model, name: &str) -> Vec<usize> {
+    match model.dof_index(name) {
+        Some(i) => vec![i + 1],
+        None => (1..model.joints.len()).filter(|&i| model.joints[i].group.as_deref() == Some(name)).collect(),
+    }
+}
+
+/// Writes the BVH of `model` swinging, reads it back with Python and checks, at a few frames, that each
+/// BVH joint's rotation is its joints' `Π Rot(aᵢ, qᵢ)` in Y-up axes (every placement of these models is
+/// a pure translation, so no rest rotation enters), and that the offsets are the placements.
+fn check_bvh_round_trip(model: &Model, tag: &str) -> serde_json::Value {
+    let rec = record(model, &grid(1.0, 50), swing);
+    let (name, bytes) = export(model, &rec, Format::Bvh).unwrap();
+    assert!(name.ends_with(".bvh"));
+    let path = scratch(tag).join(name);
+    std::fs::write(&path, bytes).unwrap();
+    let frames = [0, 9, 26, 50];
+    let parsed = read_bvh_with_python(&path, &frames);
+    assert_eq!(parsed["frames"], 51);
+    assert_close(parsed["frame_time"].as_f64().unwrap(), 0.02, 1e-9, "frame time");
+    let c = y_up();
+    for joint in parsed["joints"].as_array().unwrap().iter().skip(1) {
+        let name = joint["name"].as_str().unwrap();
+        let dofs = joints_named(model, name);
+        assert!(!dofs.is_empty(), "BVH joint {name} stands for no model joint");
+        let first = &model.joints[dofs[0]];
+        assert!(dofs.iter().all(|&i| model.joints[i].placement.rotation == Mat3::identity()));
+        let offset = Vec3::from_vec(floats(&joint["offset"]));
+        assert!((offset - c * first.placement.translation).norm() < 1e-6, "{name} offset {offset}");
+        let channels = strings(&joint["channels"]);
+        for (k, values) in frames.iter().zip(joint["values"].as_array().unwrap()) {
+            let values = floats(values);
+            let q = &rec.samples[*k].q;
+            let mut want = Mat3::identity();
+            let mut slide = Vec3::zeros();
+            for &i in &dofs {
+                match model.joints[i].kind {
+                    JointKind::Prismatic => slide += model.joints[i].axis * q[i - 1],
+                    _ => want *= axis_angle(&model.joints[i].axis, q[i - 1]),
+                }
+            }
+            let got = rotation_from_channels(&channels, &values);
+            assert!((got - c * want * c.transpose()).norm() < 1e-5, "{name} at frame {k}: channels {channels:?} = {values:?}");
+            if channels[0] == "Xposition" {
+                let position = Vec3::new(values[0], values[1], values[2]);
+                let want = c * (first.placement.translation + slide);
+                assert!((position - want).norm() < 1e-6, "{name} position at frame {k}: {position} vs {want}");
+            }
+        }
+    }
+    parsed
+}
+
+#[test]
+fn bvh_of_the_sagittal_human_holds_the_joint_angles_themselves() {
+    let model = human_model(Structure::Sagittal);
+    let parsed = check_bvh_round_trip(&model, "bvh-sagittal");
+    let joints = parsed["joints"].as_array().unwrap();
+    assert_eq!(joints[0]["name"], model.bodies[0].name.as_str());
+    assert_eq!(strings(&joints[0]["channels"])[..3], ["Xposition", "Yposition", "Zposition"]);
+    // Every joint turns about the model's ±y, which is BVH's ∓z: the Zrotation channel is ∓q in degrees.
+    let rec = record(&model, &grid(1.0, 50), swing);
+    for joint in &joints[1..] {
+        let i = model.dof_index(joint["name"].as_str().unwrap()).unwrap();
+        let sign = -model.joints[i + 1].axis.y;
+        assert_eq!(strings(&joint["channels"])[0], "Zrotation");
+        for (k, values) in [0, 9, 26, 50].iter().zip(joint["values"].as_array().unwrap()) {
+            assert_close(floats(values)[0], sign * rec.samples[*k].q[i].to_degrees(), 1e-5, "joint angle");
+        }
+    }
+}
+
+#[test]
+fn bvh_collapses_an_anatomical_joint_into_one_bvh_joint() {
+    let model = human_model(Structure::FreeArms);
+    let parsed = check_bvh_round_trip(&model, "bvh-free-arms");
+    let names: Vec<String> =
+        parsed["joints"].as_array().unwrap().iter().map(|j| j["name"].as_str().unwrap().to_string()).collect();
+    let groups: Vec<&str> = model.joints.iter().filter_map(|j| j.group.as_deref()).collect();
+    assert!(!groups.is_empty());
+    for g in groups {
+        assert!(names.iter().any(|n| n == g), "{g} missing from {names:?}");
+    }
+    assert!(names.iter().all(|n| model.dof_index(n).is_none_or(|i| model.joints[i + 1].group.is_none())), "{names:?}");
+}
+
+#[test]
+fn bvh_writes_euler_angles_for_a_tilted_axis_and_positions_for_a_prismatic_joint() {
+    let parsed = check_bvh_round_trip(&tilted_and_sliding(), "bvh-tilted");
+    let slide = parsed["joints"].as_array().unwrap().iter().find(|j| j["name"] == "slide").unwrap();
+    assert_eq!(strings(&slide["channels"])[..3], ["Xposition", "Yposition", "Zposition"]);
+}
+
+// ---- Plots ----
+
+#[test]
+fn plots_draw_every_joint_with_the_guess_dashed_and_the_strength_band() {
+    let model = one_joint(12.0);
+    let mut rec = record(&model, &grid(1.0, 100), |_, t| [t, 1.0, 0.0, 10.0 * (2.0 * PI * t).sin()]);
+    rec.contacts = vec![ContactRecord { name: "grip".into(), frame: "forearm".into(), target: [0.0; 3], normal: None }];
+    for s in &mut rec.samples {
+        s.contact_forces = vec![[0.0, 0.0, 5.0 + s.t]];
+    }
+    let guess = record(&model, &grid(1.0, 100), |_, t| [0.8 * t, 0.8, 0.0, 14.0 * (2.0 * PI * t).sin()]).samples;
+    let files = plots(&model, &rec, Some(&guess)).unwrap();
+    let names: Vec<&str> = files.iter().map(|(n, _)| n.as_str()).collect();
+    for stem in ["q", "qd", "qdd", "tau", "contact_forces"] {
+        assert!(names.contains(&format!("{stem}.svg").as_str()) && names.contains(&format!("{stem}.png").as_str()), "{names:?}");
+    }
+    for (name, bytes) in &files {
+        if name.ends_with(".png") {
+            assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n", "{name}");
+            let png = resvg::tiny_skia::Pixmap::decode_png(bytes).unwrap();
+            assert!(png.width() >= 1000 && png.height() >= 500, "{name}: {}×{}", png.width(), png.height());
+        } else {
+            let svg = std::str::from_utf8(bytes).unwrap();
+            assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"), "{name}");
+        }
+    }
+    let svg = |n: &str| String::from_utf8(files.iter().find(|(name, _)| name == n).unwrap().1.clone()).unwrap();
+    let tau = svg("tau.svg");
+    assert!(
+        tau.contains("elbow (N·m)") && tau.contains("initial guess") && tau.contains("strength limit"),
+        "tau.svg lacks a part"
+    );
+    assert!(tau.contains("opacity=\"0.12\" fill=\"#3CA05A\""), "the strength band is not shaded");
+    assert!(svg("q.svg").contains("elbow (deg)"));
+    assert!(svg("contact_forces.svg").contains("grip (N, world axes)"));
+
+    // Without a guess there is no dashed curve; a limit far beyond the torques is named, not drawn.
+    let far = one_joint(500.0);
+    let svgs = plot_svgs(&far, &rec, None).unwrap();
+    let tau = &svgs.iter().find(|(n, _)| n == "tau.svg").unwrap().1;
+    assert!(!tau.contains("initial guess") && tau.contains("off scale") && !tau.contains("opacity=\"0.12\" fill=\"#3CA05A\""));
+    assert_eq!(svgs.len(), 5);
+}
+
+// ---- Bad input ----
+
+#[test]
+fn a_directory_without_a_plan_is_refused_with_a_hint() {
+    let dir = scratch("empty");
+    let err = load_plan_dir(&dir).unwrap_err().to_string();
+    assert!(err.contains("holds no plan") && err.contains("mintorque plan"), "{err}");
+}
+
+#[test]
+fn an_unknown_format_lists_the_known_ones() {
+    let err = Format::from_name("fbx").unwrap_err().to_string();
+    assert!(err.contains("unknown format \"fbx\"") && err.contains("bvh, gltf, mot, csv"), "{err}");
+    for f in Format::ALL {
+        assert_eq!(Format::from_name(&f.name().to_uppercase()).unwrap(), f);
+    }
+}
+
+#[test]
+fn records_that_do_not_fit_the_model_are_refused() {
+    let model = one_joint(10.0);
+    let mut rec = record(&model, &grid(1.0, 4), |_, _| [0.0; 4]);
+    rec.samples[2].q.push(1.0);
+    for f in Format::ALL {
+        let err = export(&model, &rec, f).unwrap_err().to_string();
+        assert!(err.contains("samples[2]"), "{f}: {err}");
+    }
+    assert!(plots(&model, &rec, None).is_err());
+    assert!(ergonomics(&model, &rec, &BTreeMap::new()).is_err());
+    rec.samples.clear();
+    let err = export(&model, &rec, Format::Gltf).unwrap_err().to_string();
+    assert!(err.contains("no samples"), "{err}");
+}
