@@ -27,7 +27,16 @@ fn chain(n: usize) -> Model {
     for i in 1..=n {
         let placement = Transform::from_translation(Vec3::new(0.0, 0.0, if i == 1 { 0.0 } else { -0.3 }));
         let inertia = Inertia::new(1.0, Vec3::new(0.0, 0.0, -0.15), Mat3::from_diagonal(&Vec3::new(0.0075, 0.0075, 0.0001)));
-        let joint = Joint { name: format!("j{i}"), kind: JointKind::Revolute, parent: i - 1, placement, axis: Vec3::y(), limits: JointLimits::default(), passive: Passive::default(), group: None };
+        let joint = Joint {
+            name: format!("j{i}"),
+            kind: JointKind::Revolute,
+            parent: i - 1,
+            placement,
+            axis: Vec3::y(),
+            limits: JointLimits::default(),
+            passive: Passive::default(),
+            group: None,
+        };
         m.add_body(joint, Body { name: format!("link{i}"), inertia, shapes: vec![] });
     }
     m
