@@ -36,6 +36,20 @@ enum Command {
         /// No progress output.
         #[arg(long, short)]
         quiet: bool,
+        /// Skip the plots.
+        #[arg(long)]
+        no_plots: bool,
+    },
+    /// Export a planned motion (a directory written by `plan`) for other tools.
+    Export {
+        /// The plan directory.
+        dir: PathBuf,
+        /// bvh (Blender, MotionBuilder), gltf (binary .glb), mot (OpenSim), csv.
+        #[arg(long)]
+        format: String,
+        /// Output file (default: inside DIR, named after the model).
+        #[arg(long, short)]
+        out: Option<PathBuf>,
     },
     /// List the bundled examples (the paper's experiments), one line each.
     Examples,
@@ -78,7 +92,14 @@ fn load_model(path: &Path) -> Result<mintorque::Model> {
     Ok(mintorque::model::load_any(path)?)
 }
 
-fn run_plan(task_path: &Path, out: &Path, solver: Option<SolverArg>, control_points: Option<usize>, quiet: bool) -> Result<bool> {
+fn run_plan(
+    task_path: &Path,
+    out: &Path,
+    solver: Option<SolverArg>,
+    control_points: Option<usize>,
+    quiet: bool,
+    no_plots: bool,
+) -> Result<bool> {
     let mut task = Task::load(task_path)?;
     if let Some(s) = solver {
         task.solver = match s {
@@ -114,18 +135,30 @@ fn run_plan(task_path: &Path, out: &Path, solver: Option<SolverArg>, control_poi
     if let Some(b) = bar {
         b.finish_and_clear();
     }
-    let samples = plan::sample(spec, &planned, &report::sample_times(spec.duration, task.file.output.sample_rate))?;
+    let times = report::sample_times(spec.duration, task.file.output.sample_rate);
+    let samples = plan::sample(spec, &planned, &times)?;
     let summary = Summary::new(spec, &planned, &samples);
+    let record = report::record::PlanRecord::new(spec, &planned, &samples);
+    let ergonomics = report::ergonomics::ergonomics(&spec.model, &record, &task.file.output.strength)?;
+    let mut summary_json = serde_json::to_value(&summary)?;
+    summary_json["ergonomics"] = serde_json::to_value(&ergonomics)?;
     let resolved = toml::to_string_pretty(&task.file).context("serialising the resolved task")?;
-    let mut files = vec![
-        ("trajectory.csv", report::trajectory_csv(spec, &samples).into_bytes()),
-        ("summary.json", serde_json::to_string_pretty(&summary)?.into_bytes()),
-        ("task.resolved.toml", resolved.into_bytes()),
+    let mut files: Vec<(String, Vec<u8>)> = vec![
+        ("trajectory.csv".into(), report::trajectory_csv(spec, &samples).into_bytes()),
+        ("summary.json".into(), serde_json::to_string_pretty(&summary_json)?.into_bytes()),
+        ("task.resolved.toml".into(), resolved.into_bytes()),
     ];
-    files.extend(report::record::plan_files(spec, &planned, &samples)?);
-    report::write_files(out, &files)?;
+    files.extend(report::record::plan_files(spec, &planned, &samples)?.into_iter().map(|(n, b)| (n.to_string(), b)));
+    if task.file.output.plots && !no_plots {
+        let guess: Vec<report::record::SampleRecord> =
+            plan::sample_initial_guess(spec, &times)?.iter().map(report::record::SampleRecord::from).collect();
+        files.extend(report::plots::plots(&spec.model, &record, Some(&guess))?);
+    }
+    let named: Vec<(&str, Vec<u8>)> = files.iter().map(|(n, b)| (n.as_str(), b.clone())).collect();
+    report::write_files(out, &named)?;
     if !quiet {
         print!("{}", report::summary::text_table(&summary));
+        print!("{}", report::ergonomics::text_table(&ergonomics));
         println!("results in {}", out.display());
     }
     if !summary.converged {
@@ -139,9 +172,20 @@ fn run_plan(task_path: &Path, out: &Path, solver: Option<SolverArg>, control_poi
 
 fn run(cli: Cli) -> Result<ExitCode> {
     match cli.command {
-        Command::Plan { task, out, solver, control_points, quiet } => {
-            let converged = run_plan(&task, &out, solver, control_points, quiet)?;
+        Command::Plan { task, out, solver, control_points, quiet, no_plots } => {
+            let converged = run_plan(&task, &out, solver, control_points, quiet, no_plots)?;
             Ok(if converged { ExitCode::SUCCESS } else { ExitCode::from(NOT_CONVERGED) })
+        }
+        Command::Export { dir, format, out } => {
+            let format = report::export::Format::from_name(&format)?;
+            let (model, record) = report::record::load_plan_dir(&dir)?;
+            let (name, bytes) = report::export::export(&model, &record, format)?;
+            let path = out.unwrap_or_else(|| dir.join(&name));
+            let parent = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+            let file = path.file_name().and_then(|f| f.to_str()).context("--out must name a file")?;
+            report::write_files(parent, &[(file, bytes)])?;
+            println!("wrote {}", path.display());
+            Ok(ExitCode::SUCCESS)
         }
         Command::Examples => {
             for e in mintorque::plan::examples::ALL {

@@ -312,9 +312,21 @@ pub fn plan(spec: &Spec, solver: SolverKind, settings: &Settings, observer: &mut
 
 /// The planned motion sampled at `times` (s).
 pub fn sample(spec: &Spec, plan: &Plan, times: &[f64]) -> Result<Vec<NodeValues>> {
+    sample_x(spec, &plan.x, times)
+}
+
+/// The motion of unknowns `x` (e.g. the initial guess, [`initial_x`]) sampled at `times` (s).
+pub fn sample_x(spec: &Spec, x: &[f64], times: &[f64]) -> Result<Vec<NodeValues>> {
     let spline = CubicBSpline::new(spec.n_ctrl, spec.duration)?;
     let nodes = spline.grid(times)?;
     let mut t = Transcription::with_nodes(spec, spline, nodes.clone(), nodes);
-    t.set_x(&plan.x);
+    t.set_x(x);
     Ok((0..t.len()).map(|k| t.node_values(k)).collect())
+}
+
+/// The initial guess of `spec`, sampled at `times` (s) — for plots that show it beside the optimum.
+pub fn sample_initial_guess(spec: &Spec, times: &[f64]) -> Result<Vec<NodeValues>> {
+    let problem = Transcription::new(spec)?;
+    let x0 = initial_x(spec, &problem)?;
+    sample_x(spec, &x0, times)
 }

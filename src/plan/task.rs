@@ -319,6 +319,12 @@ pub struct OutputSection {
     /// Samples per second in trajectory.csv.
     #[serde(default = "hundred")]
     pub sample_rate: f64,
+    /// Strength limits (N·m) of the ergonomic report, per joint; default the model's effort limits.
+    #[serde(default)]
+    pub strength: BTreeMap<String, f64>,
+    /// Plots (SVG and PNG) of q, q̇, q̈, τ and contact forces.
+    #[serde(default = "yes")]
+    pub plots: bool,
 }
 
 fn hundred() -> f64 {
@@ -327,7 +333,7 @@ fn hundred() -> f64 {
 
 impl Default for OutputSection {
     fn default() -> Self {
-        OutputSection { sample_rate: 100.0 }
+        OutputSection { sample_rate: 100.0, strength: BTreeMap::new(), plots: true }
     }
 }
 
@@ -369,6 +375,14 @@ impl Task {
             time_limit: s.time_limit,
             ..Settings::default()
         };
+        let rate = file.output.sample_rate;
+        if !(rate.is_finite() && rate > 0.0) {
+            return Err(Error::task(
+                &origin,
+                "output.sample_rate",
+                format!("must be a positive number of samples per second, got {rate}"),
+            ));
+        }
         for (field, v) in [("solver.tolerance", s.tolerance), ("solver.violation_tolerance", s.violation_tolerance)] {
             if !(v.is_finite() && v > 0.0) {
                 return Err(Error::task(&origin, field, format!("must be a positive number, got {v}")));

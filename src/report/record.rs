@@ -31,6 +31,19 @@ pub struct SampleRecord {
     pub contact_forces: Vec<[f64; 3]>,
 }
 
+impl From<&NodeValues> for SampleRecord {
+    fn from(s: &NodeValues) -> SampleRecord {
+        SampleRecord {
+            t: s.t,
+            q: s.q.clone(),
+            qd: s.qd.clone(),
+            qdd: s.qdd.clone(),
+            tau: s.tau.clone(),
+            contact_forces: s.contact_forces.iter().map(|f| [f.x, f.y, f.z]).collect(),
+        }
+    }
+}
+
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct PlanRecord {
     pub format: String,
@@ -77,17 +90,7 @@ impl PlanRecord {
                 .collect(),
             support: spec.balance.as_ref().map(|b| [b.x, b.y]),
             converged: plan.converged(),
-            samples: samples
-                .iter()
-                .map(|s| SampleRecord {
-                    t: s.t,
-                    q: s.q.clone(),
-                    qd: s.qd.clone(),
-                    qdd: s.qdd.clone(),
-                    tau: s.tau.clone(),
-                    contact_forces: s.contact_forces.iter().map(arr).collect(),
-                })
-                .collect(),
+            samples: samples.iter().map(SampleRecord::from).collect(),
         }
     }
 }
