@@ -2,7 +2,9 @@
 //! or not at all (every file goes to a temporary directory first and is renamed into place only when all
 //! of them were written).
 
+pub mod filmstrip;
 pub mod record;
+pub mod scene;
 pub mod summary;
 
 pub use summary::Summary;
