@@ -6,6 +6,7 @@ pub mod filmstrip;
 pub mod record;
 pub mod scene;
 pub mod summary;
+pub mod viewer;
 
 pub use summary::Summary;
 
