@@ -4,9 +4,12 @@
 
 pub mod ergonomics;
 pub mod export;
+pub mod filmstrip;
 pub mod plots;
 pub mod record;
+pub mod scene;
 pub mod summary;
+pub mod viewer;
 
 pub use summary::Summary;
 

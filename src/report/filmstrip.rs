@@ -1,0 +1,525 @@
+//! The motion as a filmstrip, like the paper's Figures 4–10: the figure at evenly spaced times, side by
+//! side, each pose in its own panel at one common scale, the time under it. Shapes are drawn as their
+//! orthographic outlines (a box or a cylinder as the convex hull of its projected corners or rims, a capsule
+//! as a thick round-capped line), nearest last; joints are dots coloured by |τ|/limit like in the 3D view.
+
+use super::record::PlanRecord;
+use super::scene::{self, JointMarker};
+use crate::dynamics::{kinematics, Data};
+use crate::error::{Error, Result};
+use crate::model::{Model, Shape};
+use crate::spatial::Vec3;
+use std::fmt::Write as _;
+use std::sync::{Arc, OnceLock};
+
+/// Which way the camera looks. The figure faces +x, z is up.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum View {
+    /// From the figure's right, looking along +y: x to the right, z up (the paper's sagittal figures).
+    #[default]
+    Side,
+    /// From in front, looking along −x: y to the right, z up.
+    Front,
+    /// From above, looking down −z: x to the right, y up.
+    Top,
+}
+
+impl View {
+    /// Screen coordinates (right, up) and depth (away from the viewer) of a world point.
+    fn project(self, p: &Vec3) -> ([f64; 2], f64) {
+        match self {
+            View::Side => ([p.x, p.z], p.y),
+            View::Front => ([p.y, p.z], -p.x),
+            View::Top => ([p.x, p.y], -p.z),
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            View::Side => "side",
+            View::Front => "front",
+            View::Top => "top",
+        }
+    }
+}
+
+impl std::str::FromStr for View {
+    type Err = String;
+    fn from_str(s: &str) -> std::result::Result<View, String> {
+        match s.to_ascii_lowercase().as_str() {
+            "side" => Ok(View::Side),
+            "front" => Ok(View::Front),
+            "top" => Ok(View::Top),
+            _ => Err(format!("unknown view \"{s}\": use side, front or top")),
+        }
+    }
+}
+
+/// Panel height the figure is scaled to (px), and the widest a panel may get.
+const FIGURE_HEIGHT: f64 = 240.0;
+const MAX_PANEL_WIDTH: f64 = 360.0;
+/// Widest a row of panels may get before the filmstrip wraps (px).
+const MAX_WIDTH: f64 = 1600.0;
+const PAD: f64 = 14.0;
+const HEADER: f64 = 24.0;
+const LABEL: f64 = 24.0;
+const FONT: &str = "DejaVu Sans, Helvetica, Arial, sans-serif";
+const FILL: &str = "#d3dce6";
+const OUTLINE: &str = "#2b3a4a";
+const STICK: &str = "#2b3a4a";
+const FORCE: &str = "#d0302a";
+const SUPPORT: &str = "#2a7de1";
+
+/// One thing to draw, in screen metres (right, up), before scaling.
+#[derive(Clone, Debug)]
+enum Prim {
+    /// A closed outline: a box or cylinder silhouette, or the top-view support rectangle.
+    Polygon(Vec<[f64; 2]>),
+    /// A capsule: a line `radius` thick on either side, with round ends.
+    Capsule([f64; 2], [f64; 2], f64),
+    Circle([f64; 2], f64),
+    Stick([f64; 2], [f64; 2]),
+}
+
+impl Prim {
+    /// The rectangle it covers, `[u_min, v_min, u_max, v_max]`.
+    fn bounds(&self) -> [f64; 4] {
+        let pts: Vec<([f64; 2], f64)> = match self {
+            Prim::Polygon(p) => p.iter().map(|x| (*x, 0.0)).collect(),
+            Prim::Capsule(a, b, r) => vec![(*a, *r), (*b, *r)],
+            Prim::Circle(c, r) => vec![(*c, *r)],
+            Prim::Stick(a, b) => vec![(*a, 0.0), (*b, 0.0)],
+        };
+        pts.iter().fold([f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY], |b, (p, r)| {
+            [b[0].min(p[0] - r), b[1].min(p[1] - r), b[2].max(p[0] + r), b[3].max(p[1] + r)]
+        })
+    }
+}
+
+/// A pose ready to draw: body parts far to near, then the overlays (joints, contacts) on top.
+struct Pose {
+    t: f64,
+    parts: Vec<Prim>,
+    joints: Vec<([f64; 2], String)>,
+    /// Contact frame point and the force on the figure (screen axes, N).
+    forces: Vec<([f64; 2], [f64; 2])>,
+}
+
+/// The filmstrip as SVG: `frames` poses at `t = k·T/(frames − 1)` (one pose at t = 0 when `frames` is 1;
+/// 0 is taken as 1), seen from `view`. Each pose is a `<g class="frame">`.
+pub fn filmstrip_svg(model: &Model, record: &PlanRecord, frames: usize, view: View) -> String {
+    let frames = frames.max(1);
+    let times: Vec<f64> =
+        (0..frames).map(|k| if frames == 1 { 0.0 } else { record.duration * k as f64 / (frames - 1) as f64 }).collect();
+    let poser = Poser::new(model, record, view);
+    let mut data = Data::new(model);
+    let poses: Vec<Pose> = times.iter().map(|&t| poser.pose_at(&mut data, t)).collect();
+    let scenery = scenery(record, view);
+    Layout::new(&poses, &scenery).svg(model, record, &poses, &scenery, view, label_decimals(record.duration, frames))
+}
+
+/// Enough decimals that neighbouring frames' labels differ.
+fn label_decimals(duration: f64, frames: usize) -> usize {
+    let step = duration / (frames.max(2) - 1) as f64;
+    if step >= 0.05 {
+        2
+    } else {
+        3
+    }
+}
+
+/// What turns a time into a [`Pose`]: the figure's fixed drawing data, worked out once per filmstrip.
+struct Poser<'a> {
+    model: &'a Model,
+    record: &'a PlanRecord,
+    view: View,
+    sticks: Vec<Vec<[Vec3; 2]>>,
+    markers: Vec<JointMarker>,
+    peak: f64,
+}
+
+impl<'a> Poser<'a> {
+    fn new(model: &'a Model, record: &'a PlanRecord, view: View) -> Self {
+        Poser {
+            model,
+            record,
+            view,
+            sticks: scene::sticks(model),
+            markers: scene::joint_markers(model),
+            peak: scene::peak_torque(record),
+        }
+    }
+
+    fn pose_at(&self, data: &mut Data, t: f64) -> Pose {
+        let (model, view) = (self.model, self.view);
+        let oms = scene::body_placements(model, data, &scene::q_at(model, self.record, t));
+        let mut parts: Vec<(f64, Prim)> = Vec::new();
+        for (b, om) in oms.iter().enumerate() {
+            parts.extend(model.bodies[b].shapes.iter().map(|s| shape_prim(&s.transformed(om), view)));
+            for [a, e] in &self.sticks[b] {
+                let ((pa, da), (pe, de)) = (view.project(&om.act_point(a)), view.project(&om.act_point(e)));
+                parts.push(((da + de) / 2.0, Prim::Stick(pa, pe)));
+            }
+        }
+        // Far first, so nearer parts cover them (the painter's order).
+        parts.sort_by(|a, b| b.0.total_cmp(&a.0));
+        let tau = scene::tau_at(model, self.record, t);
+        let joints = self
+            .markers
+            .iter()
+            .map(|m| (view.project(&oms[m.body].translation).0, scene::load_colour(scene::load_ratio(m, &tau, self.peak))))
+            .collect();
+        let forces = forces_at(model, self.record, data, t, view);
+        Pose { t, parts: parts.into_iter().map(|(_, p)| p).collect(), joints, forces }
+    }
+}
+
+/// Contact points (after the placements of `t`) and the forces of the first sample at or after `t`: the
+/// filmstrip's times are usually sample times, and a force is not worth interpolating for a drawing.
+fn forces_at(model: &Model, record: &PlanRecord, data: &Data, t: f64, view: View) -> Vec<([f64; 2], [f64; 2])> {
+    let k = record.samples.partition_point(|s| s.t < t).min(record.samples.len().saturating_sub(1));
+    let Some(sample) = record.samples.get(k) else { return Vec::new() };
+    record
+        .contacts
+        .iter()
+        .zip(&sample.contact_forces)
+        .map(|(c, f)| {
+            let at = model
+                .frame_index(&c.frame)
+                .map_or(Vec3::from(c.target), |i| kinematics::frame_placement(model, data, i).translation);
+            let (p, _) = view.project(&at);
+            let (tip, _) = view.project(&(at + Vec3::from(*f)));
+            (p, [tip[0] - p[0], tip[1] - p[1]])
+        })
+        .collect()
+}
+
+/// A world-frame shape's outline and depth.
+fn shape_prim(shape: &Shape, view: View) -> (f64, Prim) {
+    match shape {
+        Shape::Capsule { a, b, radius } => {
+            let ((pa, da), (pb, db)) = (view.project(a), view.project(b));
+            ((da + db) / 2.0, Prim::Capsule(pa, pb, *radius))
+        }
+        Shape::Sphere { center, radius } => {
+            let (c, d) = view.project(center);
+            (d, Prim::Circle(c, *radius))
+        }
+        // An orthographic view of a box or a cylinder is the convex hull of its corners or end rims.
+        Shape::Box { .. } | Shape::Cylinder { .. } => {
+            let projected: Vec<([f64; 2], f64)> = scene::shape_points(shape).iter().map(|p| view.project(p)).collect();
+            let depth = projected.iter().map(|(_, d)| d).sum::<f64>() / projected.len() as f64;
+            (depth, Prim::Polygon(convex_hull(projected.into_iter().map(|(p, _)| p).collect())))
+        }
+    }
+}
+
+/// Andrew's monotone chain; counter-clockwise, without repeated points.
+fn convex_hull(mut pts: Vec<[f64; 2]>) -> Vec<[f64; 2]> {
+    pts.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
+    pts.dedup_by(|a, b| (a[0] - b[0]).abs() < 1e-12 && (a[1] - b[1]).abs() < 1e-12);
+    if pts.len() < 3 {
+        return pts;
+    }
+    let cross = |o: &[f64; 2], a: &[f64; 2], b: &[f64; 2]| (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+    let mut hull: Vec<[f64; 2]> = Vec::with_capacity(2 * pts.len());
+    for pass in [pts.clone(), pts.iter().rev().copied().collect()] {
+        let start = hull.len();
+        for p in pass {
+            while hull.len() >= start + 2 && cross(&hull[hull.len() - 2], &hull[hull.len() - 1], &p) <= 0.0 {
+                hull.pop();
+            }
+            hull.push(p);
+        }
+        hull.pop(); // the last point of each pass starts the other
+    }
+    hull
+}
+
+/// What stays put in every panel: the ground, the support region and the contact targets.
+struct Scenery {
+    /// Height of the ground line (side and front views).
+    ground: Option<f64>,
+    support: Option<Prim>,
+    targets: Vec<[f64; 2]>,
+}
+
+fn scenery(record: &PlanRecord, view: View) -> Scenery {
+    let support = record.support.map(|[[x0, x1], [y0, y1]]| match view {
+        View::Top => Prim::Polygon(vec![[x0, y0], [x1, y0], [x1, y1], [x0, y1]]),
+        View::Side => Prim::Stick([x0, 0.0], [x1, 0.0]),
+        View::Front => Prim::Stick([y0, 0.0], [y1, 0.0]),
+    });
+    let targets = record.contacts.iter().map(|c| view.project(&Vec3::from(c.target)).0).collect();
+    Scenery { ground: (view != View::Top).then_some(0.0), support, targets }
+}
+
+/// Where the panels go: one common scale, every pose's panel as large as the union of all of them, in one
+/// row, or in a few equal rows when one would be wider than [`MAX_WIDTH`].
+struct Layout {
+    /// `[u_min, v_min, u_max, v_max]` of everything drawn, in metres.
+    bounds: [f64; 4],
+    scale: f64,
+    panel_w: f64,
+    figure_h: f64,
+    columns: usize,
+}
+
+impl Layout {
+    fn new(poses: &[Pose], scenery: &Scenery) -> Layout {
+        let frames = poses.len().max(1);
+        let mut b = [f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY];
+        let mut grow = |r: [f64; 4]| b = [b[0].min(r[0]), b[1].min(r[1]), b[2].max(r[2]), b[3].max(r[3])];
+        for pose in poses {
+            pose.parts.iter().for_each(|p| grow(p.bounds()));
+            pose.joints.iter().for_each(|(p, _)| grow([p[0], p[1], p[0], p[1]]));
+        }
+        scenery.support.iter().for_each(|p| grow(p.bounds()));
+        scenery.targets.iter().for_each(|p| grow([p[0], p[1], p[0], p[1]]));
+        if !b[0].is_finite() {
+            b = [-0.5, -0.5, 0.5, 0.5];
+        }
+        // A figure that hangs below the ground (a pendulum from the world origin) keeps the ground in view
+        // only when it stands on it.
+        if let Some(g) = scenery.ground {
+            if b[1] > g - 1e-3 {
+                b[1] = g;
+            }
+        }
+        // Never thinner than 10 cm either way, so a point-like figure still gets a sane scale.
+        let (w, h) = ((b[2] - b[0]).max(0.1), (b[3] - b[1]).max(0.1));
+        let scale = (FIGURE_HEIGHT / h).min(MAX_PANEL_WIDTH / w);
+        let panel_w = w * scale + 2.0 * PAD;
+        let rows = ((frames as f64 * panel_w / MAX_WIDTH).ceil() as usize).clamp(1, frames);
+        Layout { bounds: b, scale, panel_w, figure_h: h * scale, columns: frames.div_ceil(rows) }
+    }
+
+    fn panel_h(&self) -> f64 {
+        2.0 * PAD + self.figure_h + LABEL
+    }
+
+    /// Top-left corner of panel `k`.
+    fn origin(&self, k: usize) -> [f64; 2] {
+        [(k % self.columns) as f64 * self.panel_w, HEADER + (k / self.columns) as f64 * self.panel_h()]
+    }
+
+    /// Screen metres → pixels inside panel `k`.
+    fn px(&self, k: usize, p: &[f64; 2]) -> [f64; 2] {
+        let [x0, y0] = self.origin(k);
+        [x0 + PAD + (p[0] - self.bounds[0]) * self.scale, y0 + PAD + (self.bounds[3] - p[1]) * self.scale]
+    }
+
+    fn svg(&self, model: &Model, record: &PlanRecord, poses: &[Pose], scenery: &Scenery, view: View, decimals: usize) -> String {
+        let rows = poses.len().div_ceil(self.columns);
+        let width = self.panel_w * self.columns.min(poses.len()) as f64;
+        let height = HEADER + rows as f64 * self.panel_h();
+        let mut s = String::new();
+        let _ = writeln!(
+            s,
+            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width:.0}" height="{height:.0}" viewBox="0 0 {width:.2} {height:.2}">"#
+        );
+        let _ = writeln!(s, r##"<rect width="100%" height="100%" fill="#ffffff"/>"##);
+        let title = format!(
+            "{} — {} view, {} frames over {:.3} s{}",
+            model.name,
+            view.name(),
+            poses.len(),
+            record.duration,
+            if record.converged { "" } else { " (NOT converged)" }
+        );
+        let _ = writeln!(
+            s,
+            r##"<text x="{PAD}" y="17" font-family="{FONT}" font-size="13" fill="#5b6b7c">{}</text>"##,
+            xml_escape(&title)
+        );
+        // Forces are drawn relative to the figure's weight: the weight is a quarter of the figure's height.
+        let per_newton = self.figure_h * 0.25 / weight(model, record);
+        for (k, pose) in poses.iter().enumerate() {
+            self.frame(&mut s, k, pose, scenery, per_newton, decimals);
+        }
+        s.push_str("</svg>\n");
+        s
+    }
+
+    fn frame(&self, s: &mut String, k: usize, pose: &Pose, scenery: &Scenery, per_newton: f64, decimals: usize) {
+        let _ = writeln!(s, r#"<g class="frame" id="frame-{k}" data-t="{:.6}">"#, pose.t);
+        let [x0, y0] = self.origin(k);
+        if !k.is_multiple_of(self.columns) {
+            let _ = writeln!(
+                s,
+                r##"<line x1="{x0:.2}" y1="{y0:.2}" x2="{x0:.2}" y2="{:.2}" stroke="#e3e8ee"/>"##,
+                y0 + 2.0 * PAD + self.figure_h
+            );
+        }
+        if let Some(g) = scenery.ground {
+            let y = self.px(k, &[0.0, g])[1];
+            let _ = writeln!(
+                s,
+                r##"<line x1="{:.2}" y1="{y:.2}" x2="{:.2}" y2="{y:.2}" stroke="#9aa5b1" stroke-width="1.5"/>"##,
+                x0 + 4.0,
+                x0 + self.panel_w - 4.0
+            );
+        }
+        if let Some(p) = &scenery.support {
+            self.support(s, k, p);
+        }
+        for t in &scenery.targets {
+            let [x, y] = self.px(k, t);
+            let _ =
+                writeln!(s, r#"<path d="M{:.2},{:.2}l8,8m0,-8l-8,8" stroke="{FORCE}" stroke-width="1.5"/>"#, x - 4.0, y - 4.0);
+        }
+        for p in &pose.parts {
+            self.part(s, k, p);
+        }
+        for (p, colour) in &pose.joints {
+            let [x, y] = self.px(k, p);
+            let _ = writeln!(
+                s,
+                r#"<circle class="joint" cx="{x:.2}" cy="{y:.2}" r="3.5" fill="{colour}" stroke="{OUTLINE}" stroke-width="0.8"/>"#
+            );
+        }
+        for (at, f) in &pose.forces {
+            self.arrow(s, k, at, f, per_newton);
+        }
+        let _ = writeln!(
+            s,
+            r##"<text class="time" x="{:.2}" y="{:.2}" font-family="{FONT}" font-size="14" text-anchor="middle" fill="#1d2733">t = {:.decimals$} s</text>"##,
+            x0 + self.panel_w / 2.0,
+            y0 + 2.0 * PAD + self.figure_h + 16.0,
+            pose.t
+        );
+        s.push_str("</g>\n");
+    }
+
+    /// A body part: a light shape with a dark outline, or a dark stick.
+    fn part(&self, s: &mut String, k: usize, p: &Prim) {
+        const WIDTH: f64 = 1.2;
+        match p {
+            Prim::Polygon(pts) => {
+                let _ = writeln!(
+                    s,
+                    r#"<polygon points="{}" fill="{FILL}" stroke="{OUTLINE}" stroke-width="{WIDTH}" stroke-linejoin="round"/>"#,
+                    self.points(k, pts)
+                );
+            }
+            Prim::Capsule(a, b, r) => {
+                // An outlined thick line: a dark line a little wider under the fill-coloured one.
+                let ([ax, ay], [bx, by]) = (self.px(k, a), self.px(k, b));
+                let w = 2.0 * r * self.scale;
+                for (colour, w) in [(OUTLINE, w + 2.0 * WIDTH), (FILL, w)] {
+                    let _ = writeln!(
+                        s,
+                        r#"<line x1="{ax:.2}" y1="{ay:.2}" x2="{bx:.2}" y2="{by:.2}" stroke="{colour}" stroke-width="{w:.2}" stroke-linecap="round"/>"#
+                    );
+                }
+            }
+            Prim::Circle(c, r) => {
+                let [x, y] = self.px(k, c);
+                let _ = writeln!(
+                    s,
+                    r#"<circle cx="{x:.2}" cy="{y:.2}" r="{:.2}" fill="{FILL}" stroke="{OUTLINE}" stroke-width="{WIDTH}"/>"#,
+                    r * self.scale
+                );
+            }
+            Prim::Stick(a, b) => {
+                let ([ax, ay], [bx, by]) = (self.px(k, a), self.px(k, b));
+                let _ = writeln!(
+                    s,
+                    r#"<line class="stick" x1="{ax:.2}" y1="{ay:.2}" x2="{bx:.2}" y2="{by:.2}" stroke="{STICK}" stroke-width="2.5" stroke-linecap="round"/>"#
+                );
+            }
+        }
+    }
+
+    /// The support region: a translucent rectangle from above, a thick bar on the ground from the side.
+    fn support(&self, s: &mut String, k: usize, p: &Prim) {
+        match p {
+            Prim::Stick(a, b) => {
+                let ([ax, ay], [bx, by]) = (self.px(k, a), self.px(k, b));
+                let _ = writeln!(
+                    s,
+                    r#"<line class="support" x1="{ax:.2}" y1="{ay:.2}" x2="{bx:.2}" y2="{by:.2}" stroke="{SUPPORT}" stroke-width="4" stroke-opacity="0.7"/>"#
+                );
+            }
+            Prim::Polygon(pts) => {
+                let _ = writeln!(
+                    s,
+                    r#"<polygon class="support" points="{}" fill="{SUPPORT}" fill-opacity="0.15" stroke="{SUPPORT}" stroke-width="1.5"/>"#,
+                    self.points(k, pts)
+                );
+            }
+            Prim::Capsule(..) | Prim::Circle(..) => {}
+        }
+    }
+
+    fn points(&self, k: usize, pts: &[[f64; 2]]) -> String {
+        pts.iter().map(|p| self.px(k, p)).map(|[x, y]| format!("{x:.2},{y:.2}")).collect::<Vec<_>>().join(" ")
+    }
+
+    /// A force arrow from the contact point, `per_newton` pixels long per newton.
+    fn arrow(&self, s: &mut String, k: usize, at: &[f64; 2], f: &[f64; 2], per_newton: f64) {
+        let [x, y] = self.px(k, at);
+        let (dx, dy) = (f[0] * per_newton, -f[1] * per_newton);
+        let len = dx.hypot(dy);
+        if len < 1.0 {
+            return;
+        }
+        let (ux, uy) = (dx / len, dy / len);
+        let head = len.min(8.0);
+        let (tx, ty) = (x + dx, y + dy);
+        let (lx, ly) = (tx - head * ux + 0.5 * head * uy, ty - head * uy - 0.5 * head * ux);
+        let (rx, ry) = (tx - head * ux - 0.5 * head * uy, ty - head * uy + 0.5 * head * ux);
+        let _ = writeln!(
+            s,
+            r#"<line class="force" x1="{x:.2}" y1="{y:.2}" x2="{tx:.2}" y2="{ty:.2}" stroke="{FORCE}" stroke-width="2"/>"#
+        );
+        let _ = writeln!(s, r#"<polygon points="{tx:.2},{ty:.2} {lx:.2},{ly:.2} {rx:.2},{ry:.2}" fill="{FORCE}"/>"#);
+    }
+}
+
+/// The figure's weight (N) under the plan's gravity; for a massless figure or zero gravity, the largest
+/// total contact force, so that forces still get a length.
+fn weight(model: &Model, record: &PlanRecord) -> f64 {
+    let w = model.total_mass() * Vec3::from(record.gravity).norm();
+    if w > 0.0 {
+        return w;
+    }
+    let biggest = |s: &super::record::SampleRecord| s.contact_forces.iter().map(|f| Vec3::from(*f).norm()).sum::<f64>();
+    record.samples.iter().map(biggest).fold(1.0, f64::max)
+}
+
+fn xml_escape(s: &str) -> String {
+    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+}
+
+/// The filmstrip as PNG (rendered at twice the SVG's pixel size, so it stays sharp on high-density screens
+/// and in print). Text uses the system's fonts; without any the labels are left out.
+pub fn filmstrip_png(model: &Model, record: &PlanRecord, frames: usize, view: View) -> Result<Vec<u8>> {
+    svg_to_png(&filmstrip_svg(model, record, frames, view), 2.0)
+}
+
+/// Renders SVG text to PNG bytes at `zoom` pixels per SVG pixel.
+pub fn svg_to_png(svg: &str, zoom: f32) -> Result<Vec<u8>> {
+    use resvg::{tiny_skia, usvg};
+    let fail = |what: &str, e: String| Error::input("filmstrip", what, e);
+    let options = usvg::Options { fontdb: system_fonts(), ..usvg::Options::default() };
+    let tree = usvg::Tree::from_str(svg, &options).map_err(|e| fail("svg", e.to_string()))?;
+    let size = tree.size().to_int_size().scale_by(zoom).ok_or_else(|| fail("png", "empty picture".into()))?;
+    let mut pixmap =
+        tiny_skia::Pixmap::new(size.width(), size.height()).ok_or_else(|| fail("png", format!("cannot allocate {size:?}")))?;
+    resvg::render(&tree, tiny_skia::Transform::from_scale(zoom, zoom), &mut pixmap.as_mut());
+    pixmap.encode_png().map_err(|e| fail("png", e.to_string()))
+}
+
+/// The system's fonts, looked up once per process (scanning them takes longer than rendering).
+fn system_fonts() -> Arc<resvg::usvg::fontdb::Database> {
+    static FONTS: OnceLock<Arc<resvg::usvg::fontdb::Database>> = OnceLock::new();
+    FONTS
+        .get_or_init(|| {
+            let mut db = resvg::usvg::fontdb::Database::new();
+            db.load_system_fonts();
+            db.set_sans_serif_family("DejaVu Sans");
+            Arc::new(db)
+        })
+        .clone()
+}

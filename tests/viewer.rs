@@ -1,0 +1,277 @@
+//! The viewer page and the filmstrips: self-contained, complete, and drawable for every kind of figure.
+//! The records here are made by hand (a smooth motion between two poses, made-up torques and contact
+//! forces), so these tests need no solver; `scripts/browser-test.sh` checks real plans in a browser.
+
+use mintorque::dynamics::{kinematics, Data};
+use mintorque::model::human::{HumanParams, Structure};
+use mintorque::model::{figure, urdf, Model};
+use mintorque::report::filmstrip::{filmstrip_png, filmstrip_svg, View};
+use mintorque::report::record::{ContactRecord, PlanRecord, SampleRecord, FORMAT};
+use mintorque::report::viewer::{embedded_data, file_url, motion_html, write_view_files, VIEW_FILES};
+use std::path::{Path, PathBuf};
+
+fn repo() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn double_pendulum() -> Model {
+    urdf::load(&repo().join("models/double_pendulum.urdf")).unwrap()
+}
+
+fn human() -> Model {
+    Structure::Sagittal.build(HumanParams::default()).unwrap()
+}
+
+/// A plan-like record: every joint eases from 0 to `amplitude` (rad) over `duration`, torques follow a sine,
+/// and each contact (at the named frames) pushes up with half the figure's weight.
+fn record(model: &Model, duration: f64, n: usize, amplitude: f64, contact_frames: &[&str]) -> PlanRecord {
+    let nv = model.nv();
+    let weight = model.total_mass() * 9.81;
+    let mut data = Data::new(model);
+    kinematics::placements(model, &mut data, &vec![0.0; nv]);
+    let contacts: Vec<ContactRecord> = contact_frames
+        .iter()
+        .map(|f| {
+            let p = kinematics::frame_placement(model, &data, model.frame_index(f).unwrap()).translation;
+            ContactRecord {
+                name: format!("{f}_contact"),
+                frame: f.to_string(),
+                target: [p.x, p.y, p.z],
+                normal: Some([0.0, 0.0, 1.0]),
+            }
+        })
+        .collect();
+    let samples = (0..n)
+        .map(|k| {
+            let t = duration * k as f64 / (n - 1) as f64;
+            let s = 0.5 - 0.5 * (std::f64::consts::PI * t / duration).cos();
+            SampleRecord {
+                t,
+                q: (0..nv).map(|j| amplitude * s * if j % 2 == 0 { 1.0 } else { -0.7 }).collect(),
+                qd: vec![0.0; nv],
+                qdd: vec![0.0; nv],
+                tau: (0..nv).map(|j| 40.0 * (t * 3.0 + j as f64).sin()).collect(),
+                contact_forces: contacts.iter().map(|_| [0.1 * weight * s, 0.0, 0.5 * weight]).collect(),
+            }
+        })
+        .collect();
+    PlanRecord {
+        format: FORMAT.into(),
+        model_name: model.name.clone(),
+        joint_names: model.joint_names().iter().map(|s| s.to_string()).collect(),
+        duration,
+        gravity: [0.0, 0.0, -9.81],
+        n_ctrl: 0,
+        ctrl: vec![],
+        lambda_ctrl: vec![],
+        support: (!contacts.is_empty()).then_some([[-0.05, 0.25], [-0.15, 0.15]]),
+        contacts,
+        converged: true,
+        samples,
+    }
+}
+
+fn human_record() -> (Model, PlanRecord) {
+    let model = human();
+    let feet = model
+        .frames
+        .iter()
+        .find(|f| f.name.contains("toe"))
+        .map(|f| f.name.clone())
+        .unwrap_or_else(|| model.frames[0].name.clone());
+    let r = record(&model, 1.2, 61, 0.6, &[&feet]);
+    (model, r)
+}
+
+#[test]
+fn page_loads_nothing_from_the_network() {
+    let (model, rec) = human_record();
+    let html = motion_html(&model, &rec, None);
+    let lower = html.to_ascii_lowercase();
+    // Nothing to fetch: no external scripts, stylesheets, images or imports.
+    for pattern in
+        ["<script src", " src=\"http", " src='http", "href=\"http", "href='http", "url(http", "@import", "import(\"http"]
+    {
+        assert!(!lower.contains(pattern), "the page references {pattern}");
+    }
+    // The only absolute URLs are XML namespace names (never fetched), from three.js itself.
+    for (i, _) in lower.match_indices("http") {
+        let rest = &lower[i..];
+        if rest.starts_with("http://") || rest.starts_with("https://") {
+            assert!(rest.starts_with("http://www.w3.org/"), "unexpected URL at byte {i}: {}", &rest[..rest.len().min(60)]);
+        }
+    }
+    assert!(html.contains("window.mintorque"), "the test hook is missing");
+    assert!(html.contains("id=\"scrubber\""));
+    assert!(
+        html.contains("Copyright © 2010-2026 three.js authors") || html.contains("three.js authors"),
+        "three.js licence not inlined"
+    );
+}
+
+#[test]
+fn embedded_data_has_a_placement_per_body_per_sample() {
+    let (model, rec) = human_record();
+    let data = embedded_data(&motion_html(&model, &rec, None)).expect("the page embeds parseable JSON");
+    let placements = data["placements"].as_array().unwrap();
+    assert_eq!(placements.len(), rec.samples.len());
+    for row in placements {
+        let row = row.as_array().unwrap();
+        assert_eq!(row.len(), model.bodies.len());
+        for pose in row {
+            let p: Vec<f64> = pose.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+            assert_eq!(p.len(), 7);
+            let qn = (p[3] * p[3] + p[4] * p[4] + p[5] * p[5] + p[6] * p[6]).sqrt();
+            assert!((qn - 1.0).abs() < 1e-5, "quaternion norm {qn}");
+        }
+    }
+    // The positions are the kinematics' own, not something the page works out.
+    let k = rec.samples.len() / 2;
+    let mut d = Data::new(&model);
+    kinematics::placements(&model, &mut d, &rec.samples[k].q);
+    for (b, om) in d.oMi[..model.bodies.len()].iter().enumerate() {
+        let got: Vec<f64> = placements[k][b].as_array().unwrap()[..3].iter().map(|x| x.as_f64().unwrap()).collect();
+        let want = om.translation;
+        assert!(got.iter().zip(want.iter()).all(|(g, w)| (g - w).abs() < 1e-5), "body {b}: {got:?} vs {want:?}");
+    }
+    assert_eq!(data["bodies"].as_array().unwrap().len(), model.bodies.len());
+    assert_eq!(data["times"].as_array().unwrap().len(), rec.samples.len());
+    assert_eq!(data["contacts"].as_array().unwrap().len(), 1);
+    assert!(data["support"].is_array());
+    let shapes: usize = data["bodies"].as_array().unwrap().iter().map(|b| b["shapes"].as_array().unwrap().len()).sum();
+    assert_eq!(shapes, model.bodies.iter().map(|b| b.shapes.len()).sum::<usize>());
+}
+
+#[test]
+fn summary_is_embedded_and_bad_text_is_ignored() {
+    let model = double_pendulum();
+    let rec = record(&model, 1.0, 11, 1.0, &[]);
+    let data = embedded_data(&motion_html(&model, &rec, Some(r#"{"objective": 12.5, "joints": []}"#))).unwrap();
+    assert_eq!(data["summary"]["objective"], 12.5);
+    let data = embedded_data(&motion_html(&model, &rec, Some("not json"))).unwrap();
+    assert!(data["summary"].is_null());
+}
+
+#[test]
+fn names_cannot_break_out_of_the_page() {
+    let mut model = double_pendulum();
+    model.name = "evil</script><script>alert(1)</script>".into();
+    let mut rec = record(&model, 1.0, 5, 1.0, &[]);
+    rec.model_name = model.name.clone();
+    let html = motion_html(&model, &rec, None);
+    assert!(!html.contains("<script>alert"), "a name closed the script element");
+    assert_eq!(embedded_data(&html).unwrap()["model"], model.name.as_str());
+}
+
+#[test]
+fn shapeless_figure_is_drawn_with_sticks() {
+    let model = double_pendulum();
+    assert!(model.bodies.iter().all(|b| b.shapes.is_empty()), "the double pendulum should have no shapes");
+    let rec = record(&model, 1.5, 31, 2.0, &[]);
+    let data = embedded_data(&motion_html(&model, &rec, None)).unwrap();
+    let sticks: Vec<usize> = data["bodies"].as_array().unwrap().iter().map(|b| b["sticks"].as_array().unwrap().len()).collect();
+    // The upper link points at the elbow; the lower one, a leaf, at twice its centre of mass.
+    assert!(sticks[1] >= 1 && sticks[2] >= 1, "sticks per body: {sticks:?}");
+    let svg = filmstrip_svg(&model, &rec, 6, View::Side);
+    assert!(svg.matches("class=\"stick\"").count() >= 2 * 6, "too few sticks in the filmstrip");
+}
+
+#[test]
+fn filmstrip_has_the_requested_frames_in_every_view() {
+    let (model, rec) = human_record();
+    for view in [View::Side, View::Front, View::Top] {
+        for frames in [1, 2, 7] {
+            let svg = filmstrip_svg(&model, &rec, frames, view);
+            assert_eq!(svg.matches("<g class=\"frame\"").count(), frames, "{view:?} {frames}");
+            assert_eq!(svg.matches("class=\"time\"").count(), frames);
+            assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
+            assert!(!svg.contains("NaN") && !svg.contains("inf"), "non-finite coordinates in {view:?}");
+        }
+    }
+    // Evenly spaced from start to end.
+    let svg = filmstrip_svg(&model, &rec, 4, View::Side);
+    for label in ["t = 0.00 s", "t = 0.40 s", "t = 0.80 s", "t = 1.20 s"] {
+        assert!(svg.contains(label), "missing {label}");
+    }
+    assert!(svg.contains("class=\"force\""), "the contact force is not drawn");
+}
+
+#[test]
+fn filmstrip_png_is_a_png() {
+    let model = double_pendulum();
+    let rec = record(&model, 1.0, 11, 1.0, &[]);
+    let png = filmstrip_png(&model, &rec, 5, View::Side).unwrap();
+    assert!(png.starts_with(&[0x89, b'P', b'N', b'G', b'\r', b'\n', 0x1a, b'\n']));
+    assert!(png.len() > 1000);
+}
+
+/// Writes a plan directory as `mintorque plan` would (the files `view` reads).
+fn write_plan_dir(dir: &Path, model: &Model, rec: &PlanRecord) {
+    std::fs::create_dir_all(dir).unwrap();
+    std::fs::write(dir.join("plan.json"), serde_json::to_vec_pretty(rec).unwrap()).unwrap();
+    std::fs::write(dir.join("model.figure.toml"), figure::to_toml(model)).unwrap();
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("mintorque-viewer-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+#[test]
+fn view_files_are_written_into_the_plan_directory() {
+    let (model, rec) = human_record();
+    let dir = scratch("view-files");
+    write_plan_dir(&dir, &model, &rec);
+    write_view_files(&dir).unwrap();
+    for name in VIEW_FILES {
+        assert!(dir.join(name).metadata().unwrap().len() > 0, "{name} is empty");
+    }
+    let leftovers: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .filter(|n| n.to_string_lossy().starts_with('.'))
+        .collect();
+    assert!(leftovers.is_empty(), "staging files left behind: {leftovers:?}");
+    // Again, over the old files.
+    write_view_files(&dir).unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_record_that_does_not_fit_its_model_is_an_error_not_a_panic() {
+    let model = double_pendulum();
+    let mut rec = record(&model, 1.0, 5, 1.0, &[]);
+    rec.samples[3].q.pop();
+    let dir = scratch("bad-record");
+    write_plan_dir(&dir, &model, &rec);
+    let err = write_view_files(&dir).unwrap_err().to_string();
+    assert!(err.contains("samples[3]"), "{err}");
+    // Drawing it anyway (as a library caller might) still does not panic.
+    let _ = motion_html(&model, &rec, None);
+    let _ = filmstrip_svg(&model, &rec, 3, View::Side);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Pages for `scripts/browser-test.sh` to open, from these hand-made records: a shapeless double pendulum
+/// and the sagittal human with a contact and a support rectangle.
+#[test]
+fn writes_pages_for_the_browser_test() {
+    let out = repo().join("target/browser-artifacts");
+    let (model, rec) = human_record();
+    let dp = double_pendulum();
+    let dp_rec = record(&dp, 1.5, 76, 2.0, &[]);
+    for (name, model, rec) in [("human", &model, &rec), ("double-pendulum", &dp, &dp_rec)] {
+        let dir = out.join(format!("synthetic-{name}"));
+        write_plan_dir(&dir, model, rec);
+        write_view_files(&dir).unwrap();
+    }
+}
+
+#[test]
+fn views_parse_and_paths_become_file_urls() {
+    assert_eq!("Side".parse::<View>(), Ok(View::Side));
+    assert_eq!("top".parse::<View>(), Ok(View::Top));
+    assert!("oblique".parse::<View>().unwrap_err().contains("side, front or top"));
+    assert_eq!(file_url(Path::new("/tmp/a plan/motion.html")), "file:///tmp/a%20plan/motion.html");
+}
