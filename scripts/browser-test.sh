@@ -21,7 +21,7 @@ echo "+ npm ci (tests/browser)"
 (cd tests/browser && npm ci --no-audit --no-fund --loglevel=error)
 
 echo "+ cargo build --release"
-cargo build --release --bin mintorque --example write_viewer
+cargo build --release --bin mintorque
 
 # Plan directories go beside the screenshots, so that a failure can be looked at afterwards.
 artifacts="$repo/target/browser-artifacts"
@@ -31,8 +31,6 @@ for task in pendulum double_pendulum; do
     rm -rf "$artifacts/plan-$task"
     cargo run --release --quiet --bin mintorque -- plan "examples/$task.toml" --out "$artifacts/plan-$task" --quiet
 done
-# Until `mintorque plan` writes motion.html itself (and `mintorque view` exists), the example does it.
-cargo run --release --quiet --example write_viewer -- "$artifacts/plan-pendulum" "$artifacts/plan-double_pendulum"
 
 echo "+ cargo test --release --test viewer writes_pages_for_the_browser_test"
 cargo test --release --test viewer writes_pages_for_the_browser_test

@@ -51,6 +51,11 @@ enum Command {
         #[arg(long, short)]
         out: Option<PathBuf>,
     },
+    /// Open a plan directory's animation (motion.html) in the browser, regenerating its view files.
+    View {
+        /// The plan directory.
+        dir: PathBuf,
+    },
     /// List the bundled examples (the paper's experiments), one line each.
     Examples,
     /// Integrate the forward dynamics under a plan's torques from its start state and report the drift from
@@ -154,6 +159,19 @@ fn run_plan(
             plan::sample_initial_guess(spec, &times)?.iter().map(report::record::SampleRecord::from).collect();
         files.extend(report::plots::plots(&spec.model, &record, Some(&guess))?);
     }
+    // The views: the animation page and the filmstrip (side view), like the paper's figures.
+    {
+        use report::{filmstrip, viewer};
+        let summary_text = serde_json::to_string(&summary_json)?;
+        files.push((viewer::VIEW_FILES[0].into(), viewer::motion_html(&spec.model, &record, Some(&summary_text)).into_bytes()));
+        let frames = viewer::FILMSTRIP_FRAMES;
+        files.push((
+            viewer::VIEW_FILES[1].into(),
+            filmstrip::filmstrip_svg(&spec.model, &record, frames, filmstrip::View::Side).into_bytes(),
+        ));
+        files
+            .push((viewer::VIEW_FILES[2].into(), filmstrip::filmstrip_png(&spec.model, &record, frames, filmstrip::View::Side)?));
+    }
     let named: Vec<(&str, Vec<u8>)> = files.iter().map(|(n, b)| (n.as_str(), b.clone())).collect();
     report::write_files(out, &named)?;
     if !quiet {
@@ -185,6 +203,11 @@ fn run(cli: Cli) -> Result<ExitCode> {
             let file = path.file_name().and_then(|f| f.to_str()).context("--out must name a file")?;
             report::write_files(parent, &[(file, bytes)])?;
             println!("wrote {}", path.display());
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::View { dir } => {
+            report::viewer::write_view_files(&dir)?;
+            report::viewer::open_in_browser(&dir.join(report::viewer::VIEW_FILES[0]));
             Ok(ExitCode::SUCCESS)
         }
         Command::Examples => {
