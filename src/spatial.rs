@@ -358,9 +358,17 @@ impl Inertia {
     /// mass only.
     #[inline]
     pub fn spatial_in(&self, x: &Transform) -> SpatialInertia {
-        let r = &x.rotation;
-        SpatialInertia::from_com(self.mass, &x.act_point(&self.com), &(r * self.inertia_com * r.transpose()))
+        SpatialInertia::from_com(self.mass, &x.act_point(&self.com), &rotate_symmetric(&x.rotation, &self.inertia_com))
     }
+}
+
+/// `R S Rᵀ` for a symmetric `S`, computing the upper triangle only (45 multiplications instead of 54).
+#[inline]
+pub fn rotate_symmetric(r: &Mat3, s: &Mat3) -> Mat3 {
+    let t = r * s;
+    let e = |i: usize, j: usize| t[(i, 0)] * r[(j, 0)] + t[(i, 1)] * r[(j, 1)] + t[(i, 2)] * r[(j, 2)];
+    let (a, b, c, d, f, g) = (e(0, 0), e(0, 1), e(0, 2), e(1, 1), e(1, 2), e(2, 2));
+    Mat3::new(a, b, c, b, d, f, c, f, g)
 }
 
 /// A spatial inertia about a frame's origin, `I = [[I_o, h×], [-h×, m·1]]`, stored as its ten numbers.
