@@ -147,7 +147,7 @@ fn run_plan(
     let ergonomics = report::ergonomics::ergonomics(&spec.model, &record, &task.file.output.strength)?;
     let mut summary_json = serde_json::to_value(&summary)?;
     summary_json["ergonomics"] = serde_json::to_value(&ergonomics)?;
-    let resolved = toml::to_string_pretty(&task.file).context("serialising the resolved task")?;
+    let resolved = toml::to_string_pretty(&task.resolved_file()).context("serialising the resolved task")?;
     let mut files: Vec<(String, Vec<u8>)> = vec![
         ("trajectory.csv".into(), report::trajectory_csv(spec, &samples).into_bytes()),
         ("summary.json".into(), serde_json::to_string_pretty(&summary_json)?.into_bytes()),

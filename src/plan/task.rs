@@ -346,6 +346,33 @@ pub struct Task {
     pub settings: Settings,
 }
 
+impl Task {
+    /// The task as resolved: every path absolute (so the file works from any directory), the start and goal
+    /// postures listing every joint, contact targets filled in — what `task.resolved.toml` holds.
+    pub fn resolved_file(&self) -> TaskFile {
+        let mut f = self.file.clone();
+        let base = self.path.parent().map(Path::to_path_buf).unwrap_or_default();
+        let absolute = |p: &PathBuf| std::path::absolute(base.join(p)).unwrap_or_else(|_| base.join(p));
+        f.model.urdf = f.model.urdf.as_ref().map(absolute);
+        f.model.figure = f.model.figure.as_ref().map(absolute);
+        if !matches!(f.discretization.initial_guess.as_str(), "linear" | "via") {
+            f.discretization.initial_guess = absolute(&PathBuf::from(&f.discretization.initial_guess)).display().to_string();
+        }
+        let model = &self.spec.model;
+        let in_file_units = |i: usize, v: f64| if model.joints[i + 1].kind == JointKind::Prismatic { v } else { v.to_degrees() };
+        let posture = |q: &[f64]| -> Posture {
+            model.joint_names().iter().enumerate().map(|(i, n)| (n.to_string(), in_file_units(i, q[i]))).collect()
+        };
+        f.motion.start = posture(&self.spec.start);
+        f.motion.goal = posture(&self.spec.goal);
+        f.motion.close_loop_with.clear();
+        for (c, spec) in f.constraints.contact.iter_mut().zip(&self.spec.contacts) {
+            c.target = Some([spec.target.x, spec.target.y, spec.target.z]);
+        }
+        f
+    }
+}
+
 /// Line number (1-based) of a byte offset.
 fn line_of(text: &str, offset: usize) -> usize {
     text[..offset.min(text.len())].matches('\n').count() + 1
@@ -688,8 +715,9 @@ pub fn resolve(file: &TaskFile, base: &Path, origin: &str) -> Result<Spec> {
     })
 }
 
-/// A CSV initial guess (e.g. a previous plan's trajectory.csv): a header with a `time` column (s) and one
-/// column per joint named after it (degrees or metres); other columns are ignored.
+/// A CSV initial guess: a header with a `time` (or `time_s`) column and one column per joint named after
+/// it, or `<joint>.q_deg` / `<joint>.q_m` — so a previous plan's trajectory.csv warm-starts a new solve
+/// (refining N, changing gravity …). Degrees or metres; other columns are ignored.
 fn read_guess_csv(model: &Model, path: &Path) -> Result<Vec<(f64, Vec<f64>)>> {
     let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
     let file = path.display().to_string();
@@ -698,13 +726,13 @@ fn read_guess_csv(model: &Model, path: &Path) -> Result<Vec<(f64, Vec<f64>)>> {
         lines.next().ok_or_else(|| Error::task(&file, "header", "empty file"))?.split(',').map(str::trim).collect();
     let time_col = header
         .iter()
-        .position(|h| *h == "time" || *h == "t")
+        .position(|h| *h == "time" || *h == "t" || *h == "time_s")
         .ok_or_else(|| Error::task(&file, "header", "needs a \"time\" column (s)"))?;
     let mut cols = Vec::new();
     for (i, j) in model.joints[1..].iter().enumerate() {
         let c = header
             .iter()
-            .position(|h| *h == j.name)
+            .position(|h| *h == j.name || h.strip_prefix(j.name.as_str()).is_some_and(|rest| rest == ".q_deg" || rest == ".q_m"))
             .ok_or_else(|| Error::task(&file, "header", format!("no column for joint \"{}\"", j.name)))?;
         cols.push((i, c));
     }
