@@ -17,6 +17,13 @@ fn run(example: &str) -> Run {
     let task = Task::load(&path).unwrap_or_else(|e| panic!("{e}"));
     let planned = plan::plan(&task.spec, task.solver, &task.settings, &mut |_| {}).unwrap();
     assert!(planned.converged(), "{example}: {}", planned.outcome.reason);
+    // The optimum is never worse than its initial guess, and every constraint holds at the nodes.
+    assert!(planned.outcome.objective <= planned.initial_objective, "{example}: worse than the guess");
+    assert!(
+        planned.outcome.worst_violation <= task.settings.tol_violation,
+        "{example}: violation {}",
+        planned.outcome.worst_violation
+    );
     let times: Vec<f64> = (0..=200).map(|k| task.spec.duration * k as f64 / 200.0).collect();
     let samples = plan::sample(&task.spec, &planned, &times).unwrap();
     println!(

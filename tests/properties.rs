@@ -258,3 +258,48 @@ fn exported_models_reimport_to_the_same_dynamics() {
         }
     }
 }
+
+/// Locking joints welds them: the remaining joints' dynamics equal the full model's with the locked joints
+/// held still at their values.
+#[test]
+fn locked_joints_weld_bodies_without_changing_the_dynamics() {
+    for (seed, n) in [(41u64, 3usize), (42, 10), (43, 25)] {
+        let model = random_tree(seed, n);
+        let mut rng = Rng(seed);
+        let locks: Vec<(usize, f64)> = (0..n).filter(|i| i % 3 == 1).map(|i| (i, rng.uniform(-1.0, 1.0))).collect();
+        let locked = model.with_locked(&locks);
+        locked.validate("locked").unwrap();
+        assert_eq!(locked.nv(), n - locks.len());
+        assert!((locked.total_mass() - model.total_mass()).abs() < 1e-12);
+        let (mut q, mut v, mut a) = state(seed, n);
+        for &(i, value) in &locks {
+            (q[i], v[i], a[i]) = (value, 0.0, 0.0);
+        }
+        let kept: Vec<usize> = (0..n).filter(|i| !locks.iter().any(|(d, _)| d == i)).collect();
+        let pick = |x: &[f64]| kept.iter().map(|&i| x[i]).collect::<Vec<f64>>();
+        let tau_full = rnea(&model, &mut Data::new(&model), &q, &v, &a, &G, None).clone();
+        let tau_locked = rnea(&locked, &mut Data::new(&locked), &pick(&q), &pick(&v), &pick(&a), &G, None).clone();
+        for (k, &i) in kept.iter().enumerate() {
+            assert!(
+                (tau_full[i] - tau_locked[k]).abs() < 1e-9 * (1.0 + tau_full[i].abs()),
+                "joint {i}: {} vs {}",
+                tau_full[i],
+                tau_locked[k]
+            );
+        }
+        // Frames keep their world placement.
+        let mut d_full = Data::new(&model);
+        let mut d_locked = Data::new(&locked);
+        kinematics::placements(&model, &mut d_full, &q);
+        kinematics::placements(&locked, &mut d_locked, &pick(&q));
+        for (f, frame) in model.frames.iter().enumerate() {
+            let g = locked.frame_index(&frame.name).unwrap();
+            let (a, b) = (kinematics::frame_placement(&model, &d_full, f), kinematics::frame_placement(&locked, &d_locked, g));
+            assert!(
+                (a.translation - b.translation).norm() < 1e-12 && (a.rotation - b.rotation).norm() < 1e-12,
+                "frame {}",
+                frame.name
+            );
+        }
+    }
+}

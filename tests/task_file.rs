@@ -125,3 +125,21 @@ fn missing_model_file_is_named() {
     let e = error_of(&GOOD.replace("double_pendulum.urdf", "nope.urdf"));
     assert!(e.contains("nope.urdf"), "{e}");
 }
+
+#[test]
+fn locking_joints_and_the_reference_posture() {
+    let t = Task::parse(
+        "[model]\nhuman = \"hanging\"\nlock = { knee = 0.0, lumbar = 0.0 }\n[motion]\nbase = \"reference\"\nduration = 1.0\nstart = {}\ngoal = { elbow = 90.0 }\n",
+        &path(),
+    )
+    .unwrap();
+    assert_eq!(t.spec.model.nv(), 5);
+    assert!(t.spec.model.dof_index("knee").is_none());
+    // The dead hang: grip and shoulder at 180° in both postures, the goal's elbow as given.
+    let i = |n: &str| t.spec.model.dof_index(n).unwrap();
+    assert!((t.spec.start[i("grip")] - std::f64::consts::PI).abs() < 1e-12);
+    assert!((t.spec.goal[i("shoulder")] - std::f64::consts::PI).abs() < 1e-12);
+    assert!((t.spec.goal[i("elbow")] - std::f64::consts::FRAC_PI_2).abs() < 1e-12);
+    assert_mentions(&GOOD.replace("[motion]", "lock = { knee = 0.0 }\n[motion]"), &["model.lock.knee", "no joint"]);
+    assert_mentions(&GOOD.replace("duration = 1.5", "duration = 1.5\nbase = \"reference\""), &["motion.base", "built-in human"]);
+}

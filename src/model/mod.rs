@@ -11,6 +11,7 @@
 
 pub mod figure;
 pub mod human;
+pub mod lock;
 pub mod urdf;
 pub mod urdf_export;
 pub mod validate;

@@ -46,6 +46,9 @@ pub struct ModelSection {
     pub human: Option<String>,
     pub stature: Option<f64>,
     pub mass: Option<f64>,
+    /// Joints welded at a value for this task (degrees, metres for prismatic): fewer degrees of freedom.
+    #[serde(default)]
+    pub lock: BTreeMap<String, f64>,
 }
 
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -53,9 +56,13 @@ pub struct ModelSection {
 pub struct MotionSection {
     /// Seconds.
     pub duration: f64,
-    /// Joints not named are at 0.
+    /// Joints not named are at 0, or at the base posture's value.
     pub start: Posture,
     pub goal: Posture,
+    /// The posture unnamed joints take: "zero" (default) or, for a built-in human, "reference" (standing /
+    /// dead hang / top of a push-up).
+    #[serde(default = "zero")]
+    pub base: String,
     /// `q̇ = 0` at both ends (default true).
     #[serde(default = "yes")]
     pub zero_end_velocity: bool,
@@ -79,6 +86,10 @@ pub struct Via {
 
 fn yes() -> bool {
     true
+}
+
+fn zero() -> String {
+    "zero".into()
 }
 
 /// Gravity: a preset name or a vector (m/s², world axes, z up).
@@ -519,6 +530,40 @@ fn unit(v: &[f64; 3], field: &str, origin: &str) -> Result<Vec3> {
 /// Resolves a parsed task file against its model.
 pub fn resolve(file: &TaskFile, base: &Path, origin: &str) -> Result<Spec> {
     let mut model = load_model(&file.model, base, origin)?;
+    let base_posture = match file.motion.base.as_str() {
+        "zero" => vec![0.0; model.nv()],
+        "reference" => {
+            let name = file
+                .model
+                .human
+                .as_deref()
+                .ok_or_else(|| Error::task(origin, "motion.base", "\"reference\" needs a built-in human model"))?;
+            let structure = crate::model::human::Structure::from_name(name)?;
+            let d = crate::model::human::HumanParams::default();
+            structure.reference_pose(crate::model::human::HumanParams {
+                stature_m: file.model.stature.unwrap_or(d.stature_m),
+                mass_kg: file.model.mass.unwrap_or(d.mass_kg),
+            })?
+        }
+        other => return Err(Error::task(origin, "motion.base", format!("unknown base posture \"{other}\" (zero, reference)"))),
+    };
+    let base_posture = if file.model.lock.is_empty() {
+        base_posture
+    } else {
+        let mut locks = Vec::new();
+        for (name, value) in &file.model.lock {
+            let field = format!("model.lock.{name}");
+            let i = dof(&model, name, &field, origin)?;
+            if !value.is_finite() {
+                return Err(Error::task(origin, field, "is not a finite number"));
+            }
+            locks.push((i, to_si(&model, i, *value)));
+        }
+        let kept: Vec<f64> = (0..model.nv()).filter(|i| !locks.iter().any(|(d, _)| d == i)).map(|i| base_posture[i]).collect();
+        model = model.with_locked(&locks);
+        model.validate(origin)?;
+        kept
+    };
     let env = &file.environment;
     // Payloads: rigid masses added to the body holding the frame.
     for (k, p) in env.payload.iter().enumerate() {
@@ -581,10 +626,9 @@ pub fn resolve(file: &TaskFile, base: &Path, origin: &str) -> Result<Spec> {
         }
     };
     let nv = model.nv();
-    let zero = vec![0.0; nv];
     let m = &file.motion;
-    let start = posture(&model, &m.start, &zero, "motion.start", origin)?;
-    let goal = posture(&model, &m.goal, &zero, "motion.goal", origin)?;
+    let start = posture(&model, &m.start, &base_posture, "motion.start", origin)?;
+    let goal = posture(&model, &m.goal, &base_posture, "motion.goal", origin)?;
     let mut loads = Vec::new();
     for (k, f) in env.force.iter().enumerate() {
         let field = format!("environment.force[{k}]");
