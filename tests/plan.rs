@@ -146,3 +146,17 @@ fn simulating_a_plan_reproduces_it() {
     println!("double pendulum drift {:.4}°", sim.worst_drift.to_degrees());
     assert!(sim.worst_drift.to_degrees() < 1.0, "drift {:.4}°", sim.worst_drift.to_degrees());
 }
+
+/// The pendulum's free swing is also the optimum of ½∫τᵀH⁻¹τ dt (eq. 12 as stated): τ ≈ 0 either way.
+#[test]
+fn pendulum_free_swing_under_the_inverse_inertia_objective() {
+    let mut spec = Spec::new(model("pendulum.urdf"), vec![-70f64.to_radians()], vec![70f64.to_radians()], 0.6052);
+    spec.objective = mintorque::plan::Objective::TorqueInverseInertia;
+    for solver in [SolverKind::Structured, SolverKind::AuglagBfgs] {
+        let planned = plan::plan(&spec, solver, &Settings::default(), &mut |_| {}).unwrap();
+        assert!(planned.converged(), "{solver:?}: {}", planned.outcome.reason);
+        let times: Vec<f64> = (0..=100).map(|k| 0.6052 * k as f64 / 100.0).collect();
+        let peak = plan::sample(&spec, &planned, &times).unwrap().iter().map(|s| s.tau[0].abs()).fold(0.0, f64::max);
+        assert!(peak < 0.16, "{solver:?}: peak torque {peak}");
+    }
+}

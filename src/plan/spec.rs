@@ -77,6 +77,9 @@ pub struct PointLoad {
 pub enum Objective {
     /// `½∫τᵀWτ dt` of the active torques (the paper's choice, section 5.1).
     Torque,
+    /// `½∫τᵀH⁻¹τ dt` (eq. 12 as stated): torques weighted by the inverse of the joint-space inertia, so
+    /// that heavy and light joints count alike (units of power × time).
+    TorqueInverseInertia,
 }
 
 #[derive(Clone, Debug, PartialEq)]

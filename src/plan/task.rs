@@ -702,8 +702,18 @@ pub fn resolve(file: &TaskFile, base: &Path, origin: &str) -> Result<Spec> {
     let balance = c.balance.as_ref().map(|b| Balance { x: b.x, y: b.y, ground_z: b.ground_z });
     let objective = match file.objective.kind.as_str() {
         "torque" => Objective::Torque,
-        other => return Err(Error::task(origin, "objective.kind", format!("unknown objective \"{other}\" (torque)"))),
+        "torque_inverse_inertia" => Objective::TorqueInverseInertia,
+        other => {
+            return Err(Error::task(
+                origin,
+                "objective.kind",
+                format!("unknown objective \"{other}\" (torque, torque_inverse_inertia)"),
+            ))
+        }
     };
+    if objective == Objective::TorqueInverseInertia && !file.objective.weights.is_empty() {
+        return Err(Error::task(origin, "objective.weights", "per-joint weights apply to the \"torque\" objective only"));
+    }
     let mut weights = vec![1.0; nv];
     for (name, w) in &file.objective.weights {
         let field = format!("objective.weights.{name}");

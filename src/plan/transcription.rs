@@ -16,7 +16,7 @@
 //! defined at every time). Gradients follow eq. 33 from the engine's `∂τ/∂q`, `∂τ/∂q̇` and `H`, touching
 //! only the four non-zero basis functions at each node.
 
-use super::spec::Spec;
+use super::spec::{Objective, Spec};
 use crate::dynamics::point_force::{add_generalized_force, generalized_force_derivative, path_dofs, point_jacobian};
 use crate::dynamics::{kinematics, rnea::rnea, rnea_derivatives::rnea_derivatives, Data};
 use crate::solve::{ConstraintKind, Dims, Evaluation, Patterns, Problem, Scales};
@@ -101,7 +101,63 @@ struct Derivatives<'a> {
     lambda: Option<&'a [f64]>,
 }
 
+/// The residual of `½ τᵀH⁻¹τ`: `r = L⁻¹τ` with `H = LLᵀ`. Its exact Jacobian needs `∂L/∂q`; instead we use
+/// `J = L⁻¹ ∂τ − r (½ g)ᵀ / ‖r‖²` with `gₖ = yᵀ (∂H/∂qₖ) y`, `y = H⁻¹τ`, whose `Jᵀr = (∂τ)ᵀy − ½ g` is the
+/// exact gradient of `½ τᵀH⁻¹τ` — so the solvers' stationarity test, and the optimum, are exact, and
+/// `JᵀJ` stays a sound Gauss–Newton model. `g` costs one more derivative pass: `yᵀ(∂H/∂qₖ)y` is
+/// `yᵀ ∂(H y)/∂qₖ`, the `∂τ/∂q` of inverse dynamics at `(q, 0, y)` without gravity.
+fn inverse_inertia_residual(model: &crate::Model, data: &mut Data, w: &mut NodeWork, nv: usize, nl: usize, jac: bool) {
+    use nalgebra::{DMatrix, DVector};
+    let h = if jac { data.M.clone() } else { crate::dynamics::crba::crba(model, data, &w.q).clone() };
+    let Some(chol) = h.cholesky() else {
+        // H is positive definite for every valid model; keep the values finite if rounding says otherwise.
+        w.res.copy_from_slice(&w.tau);
+        return;
+    };
+    let l = chol.l();
+    let tau = DVector::from_column_slice(&w.tau);
+    let r = l.solve_lower_triangular(&tau).expect("L is invertible");
+    w.res.copy_from_slice(r.as_slice());
+    if !jac {
+        return;
+    }
+    let y = chol.solve(&tau);
+    let zeros = vec![0.0; nv];
+    rnea_derivatives(model, data, &w.q, &zeros, y.as_slice(), &Vec3::zeros(), None);
+    let g = data.dtau_dq.transpose() * &y;
+    let rr = r.norm_squared();
+    let solve_rows = |src: &[f64], cols: usize, dst: &mut [f64], correct: bool| {
+        // src is row-major nv × cols; dst = L⁻¹ src (− r ½gᵀ/‖r‖² for the q-derivatives).
+        let m = DMatrix::from_row_slice(nv, cols, src);
+        let mut x = l.solve_lower_triangular(&m).expect("L is invertible");
+        if correct && rr > 0.0 {
+            x -= &r * (g.transpose() * (0.5 / rr));
+        }
+        for i in 0..nv {
+            for c in 0..cols {
+                dst[i * cols + c] = x[(i, c)];
+            }
+        }
+    };
+    solve_rows(&w.dq, nv, &mut w.rdq, true);
+    solve_rows(&w.dv, nv, &mut w.rdv, false);
+    solve_rows(&w.da, nv, &mut w.rda, false);
+    if nl > 0 {
+        solve_rows(&w.dl, nl, &mut w.rdl, false);
+    }
+}
+
 impl NodeWork {
+    /// The derivatives of the objective's residual `l` at this node.
+    fn residual_row(&self, l: usize, nv: usize, nl: usize) -> Derivatives<'_> {
+        Derivatives {
+            q: &self.rdq[l * nv..(l + 1) * nv],
+            v: &self.rdv[l * nv..(l + 1) * nv],
+            a: &self.rda[l * nv..(l + 1) * nv],
+            lambda: (nl > 0).then(|| &self.rdl[l * nl..(l + 1) * nl]),
+        }
+    }
+
     /// The derivatives of active torque `l` at this node.
     fn torque_row(&self, l: usize, nv: usize, nl: usize) -> Derivatives<'_> {
         Derivatives {
@@ -192,6 +248,12 @@ struct NodeWork {
     jac: Vec<Vec<Vec3>>,
     scratch: Vec<f64>,
     row: Vec<f64>,
+    /// The objective's residual at this node (`√W τ`, or `L⁻¹τ` with `H = LLᵀ`) and its derivatives.
+    res: Vec<f64>,
+    rdq: Vec<f64>,
+    rdv: Vec<f64>,
+    rda: Vec<f64>,
+    rdl: Vec<f64>,
 }
 
 impl<'s> Transcription<'s> {
@@ -307,6 +369,11 @@ impl<'s> Transcription<'s> {
             jac: contacts.iter().map(|c: &ContactInfo| vec![Vec3::zeros(); c.path.len()]).collect(),
             scratch: vec![0.0; nv * nv],
             row: vec![0.0; 3 * nv + n_lambda],
+            res: vec![0.0; nv],
+            rdq: vec![0.0; nv * nv],
+            rdv: vec![0.0; nv * nv],
+            rda: vec![0.0; nv * nv],
+            rdl: vec![0.0; nv * n_lambda],
         };
         Transcription {
             n_eq_node: n_lambda,
@@ -435,6 +502,25 @@ impl<'s> Transcription<'s> {
                     w.w_dl[info.offset + m] = -fe;
                 }
             }
+        }
+        match spec.objective {
+            Objective::Torque => {
+                for l in 0..nv {
+                    let s = self.sqrt_weights[l];
+                    w.res[l] = s * w.tau[l];
+                    if jac {
+                        for c in 0..nv {
+                            w.rdq[l * nv + c] = s * w.dq[l * nv + c];
+                            w.rdv[l * nv + c] = s * w.dv[l * nv + c];
+                            w.rda[l * nv + c] = s * w.da[l * nv + c];
+                        }
+                        for m in 0..nl {
+                            w.rdl[l * nl + m] = s * w.dl[l * nl + m];
+                        }
+                    }
+                }
+            }
+            Objective::TorqueInverseInertia => inverse_inertia_residual(model, data, w, nv, nl, jac),
         }
     }
 
@@ -601,12 +687,11 @@ impl Problem for Transcription<'_> {
             let basis = self.nodes.basis[k];
             let sw = self.nodes.w[k].sqrt();
             let w = &mut self.work;
-            // Objective residuals: √wₖ √W_ℓ τ_ℓ.
+            // Objective residuals: √wₖ times the node's residual (√W τ, or L⁻¹τ).
             for l in 0..nv {
-                let s = sw * self.sqrt_weights[l];
-                out.r[k * nv + l] = s * w.tau[l];
+                out.r[k * nv + l] = sw * w.res[l];
                 if want_jac {
-                    Self::chain_rule(&self.layout, &basis, s, w.torque_row(l, nv, nl), out.jr.row_values_mut(k * nv + l));
+                    Self::chain_rule(&self.layout, &basis, sw, w.residual_row(l, nv, nl), out.jr.row_values_mut(k * nv + l));
                 }
             }
             // Inequalities.

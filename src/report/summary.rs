@@ -8,8 +8,10 @@ pub struct Summary {
     pub converged: bool,
     /// Why the solver stopped.
     pub reason: String,
-    /// `½∫τᵀWτ dt` of the active torques (N²·m²·s).
+    /// The objective's value: `½∫τᵀWτ dt` of the active torques (N²·m²·s), or `½∫τᵀH⁻¹τ dt`.
     pub objective: f64,
+    /// Which objective: "½∫τᵀWτ dt" or "½∫τᵀH⁻¹τ dt".
+    pub objective_kind: String,
     /// The same for the initial guess.
     pub initial_guess_objective: f64,
     pub solver: String,
@@ -114,6 +116,10 @@ impl Summary {
             converged: o.converged,
             reason: o.reason.to_string(),
             objective: o.objective,
+            objective_kind: match spec.objective {
+                crate::plan::Objective::Torque => "½∫τᵀWτ dt".into(),
+                crate::plan::Objective::TorqueInverseInertia => "½∫τᵀH⁻¹τ dt".into(),
+            },
             initial_guess_objective: plan.initial_objective,
             solver: if plan.polished { format!("{} + BFGS polish", plan.solver.name()) } else { plan.solver.name().to_string() },
             iterations: o.iterations,
@@ -149,11 +155,12 @@ pub fn text_table(s: &Summary) -> String {
     let mut out = String::new();
     let _ = writeln!(
         out,
-        "{} after {} iterations in {:.3} s ({}): effort ½∫τᵀWτ dt = {:.6e} (initial guess {:.6e})",
+        "{} after {} iterations in {:.3} s ({}): effort {} = {:.6e} (initial guess {:.6e})",
         if s.converged { "converged" } else { "NOT converged" },
         s.iterations,
         s.solve_seconds,
         s.solver,
+        s.objective_kind,
         s.objective,
         s.initial_guess_objective
     );
