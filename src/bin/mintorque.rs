@@ -149,7 +149,7 @@ fn run_plan(
     summary_json["ergonomics"] = serde_json::to_value(&ergonomics)?;
     let resolved = toml::to_string_pretty(&task.resolved_file()).context("serialising the resolved task")?;
     let mut files: Vec<(String, Vec<u8>)> = vec![
-        ("trajectory.csv".into(), report::trajectory_csv(spec, &samples).into_bytes()),
+        ("trajectory.csv".into(), report::export::csv::csv(&spec.model, &record).into_bytes()),
         ("summary.json".into(), serde_json::to_string_pretty(&summary_json)?.into_bytes()),
         ("task.resolved.toml".into(), resolved.into_bytes()),
     ];

@@ -15,8 +15,6 @@ pub use summary::Summary;
 
 use crate::error::{Error, Result};
 use crate::model::JointKind;
-use crate::plan::{NodeValues, Spec};
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 /// Sample times `0, 1/rate, …, T` (the end always included).
@@ -52,37 +50,6 @@ pub(crate) fn units(kind: JointKind) -> ([&'static str; 4], f64) {
         JointKind::Prismatic => (["q_m", "qd_m_s", "qdd_m_s2", "tau_N"], 1.0),
         _ => (["q_deg", "qd_deg_s", "qdd_deg_s2", "tau_Nm"], 180.0 / std::f64::consts::PI),
     }
-}
-
-/// The trajectory as CSV: `time_s`, then per joint its angle, velocity, acceleration (degrees for
-/// revolutes, metres for prismatic joints) and active torque, then per contact the force on the figure
-/// (N, world axes).
-pub fn trajectory_csv(spec: &Spec, samples: &[NodeValues]) -> String {
-    let model = &spec.model;
-    let mut out = String::from("time_s");
-    for j in &model.joints[1..] {
-        for u in units(j.kind).0 {
-            let _ = write!(out, ",{}.{u}", j.name);
-        }
-    }
-    for c in &spec.contacts {
-        for axis in ["fx_N", "fy_N", "fz_N"] {
-            let _ = write!(out, ",{}.{axis}", c.name);
-        }
-    }
-    out.push('\n');
-    for s in samples {
-        let _ = write!(out, "{:.6}", s.t);
-        for (i, j) in model.joints[1..].iter().enumerate() {
-            let k = units(j.kind).1;
-            let _ = write!(out, ",{:.9},{:.9},{:.9},{:.9}", s.q[i] * k, s.qd[i] * k, s.qdd[i] * k, s.tau[i]);
-        }
-        for f in &s.contact_forces {
-            let _ = write!(out, ",{:.9},{:.9},{:.9}", f.x, f.y, f.z);
-        }
-        out.push('\n');
-    }
-    out
 }
 
 /// Writes `files` (name, contents) into `dir` whole or not at all.

@@ -7,6 +7,9 @@ use crate::report::record::PlanRecord;
 use crate::report::units;
 use std::fmt::Write as _;
 
+/// The trajectory as CSV (`trajectory.csv`, and `export --format csv`): `time_s`, then per joint its
+/// angle, velocity, acceleration (degrees for revolutes, metres for prismatic joints) and active torque,
+/// then per contact the force on the figure (N, world axes).
 pub fn csv(model: &Model, record: &PlanRecord) -> String {
     let mut out = String::from("time_s");
     for j in &model.joints[1..] {
