@@ -151,3 +151,20 @@ fn a_previous_trajectory_warm_starts_a_finer_plan() {
     assert!(f0 < 1.05 * c, "warm start from {f0}, coarse optimum {c}");
     assert!(f <= c * 1.0001, "finer optimum {f} worse than coarse {c}");
 }
+
+#[test]
+fn simulate_reloads_a_plan_directory() {
+    let out = scratch("simulate");
+    let (code, _, _) =
+        run(mintorque().args(["plan", "-q", "--no-plots", "--out"]).arg(&out).arg("examples/pendulum.toml").current_dir(root()));
+    assert_eq!(code, 0);
+    let (code, stdout, stderr) = run(mintorque().arg("simulate").arg(&out));
+    assert_eq!(code, 0, "{stderr}");
+    // The pendulum's plan is its free swing: the simulation under its (≈ 0) torques stays on it.
+    let drift: f64 =
+        stdout.lines().find(|l| l.contains("pivot")).and_then(|l| l.split_whitespace().nth(3)).unwrap().parse().unwrap();
+    assert!(drift < 0.1, "{stdout}");
+    let (code, _, stderr) = run(mintorque().arg("simulate").arg(scratch("empty")));
+    assert_ne!(code, 0);
+    assert!(stderr.contains("holds no plan"), "{stderr}");
+}

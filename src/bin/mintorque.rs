@@ -61,8 +61,8 @@ enum Command {
     /// Integrate the forward dynamics under a plan's torques from its start state and report the drift from
     /// the planned motion.
     Simulate {
-        /// The task the plan was made for.
-        task: PathBuf,
+        /// A plan directory (written by `plan`), or a task file to plan first.
+        plan: PathBuf,
         /// RK4 steps over the motion.
         #[arg(long, default_value_t = 4000)]
         steps: usize,
@@ -217,16 +217,18 @@ fn run(cli: Cli) -> Result<ExitCode> {
             println!("\nrun one with: mintorque plan examples/NAME.toml --out out/NAME");
             Ok(ExitCode::SUCCESS)
         }
-        Command::Simulate { task, steps } => {
-            let task = Task::load(&task)?;
-            let planned = plan::plan(&task.spec, task.solver, &task.settings, &mut |_| {})?;
-            let sim = plan::simulate::simulate(&task.spec, &planned, steps)?;
-            println!(
-                "plan {}; forward simulation with {} RK4 steps of {:.2e} s",
-                if planned.converged() { "converged" } else { "NOT converged" },
-                steps,
-                sim.step
-            );
+        Command::Simulate { plan: path, steps } => {
+            let (task, x, status) = if path.is_dir() {
+                let (task, x) = report::record::load_plan_task(&path)?;
+                (task, x, format!("plan of {}", path.display()))
+            } else {
+                let task = Task::load(&path)?;
+                let planned = plan::plan(&task.spec, task.solver, &task.settings, &mut |_| {})?;
+                let status = if planned.converged() { "plan converged" } else { "plan NOT converged" };
+                (task, planned.x, status.to_string())
+            };
+            let sim = plan::simulate::simulate_x(&task.spec, &x, steps)?;
+            println!("{status}; forward simulation with {steps} RK4 steps of {:.2e} s", sim.step);
             for (j, d) in task.spec.model.joints[1..].iter().zip(&sim.max_drift) {
                 let (v, unit) =
                     if j.kind == mintorque::model::JointKind::Prismatic { (*d * 1e3, "mm") } else { (d.to_degrees(), "°") };

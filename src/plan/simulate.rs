@@ -4,7 +4,7 @@
 //! plan is under-resolved (too few control points) or the motion is unstable (a swing, a loop closure held
 //! only by the optimiser's contact forces).
 
-use super::{sample, NodeValues, Plan, Spec};
+use super::{sample_x, NodeValues, Plan, Spec};
 use crate::dynamics::{aba::aba, kinematics, Data};
 use crate::error::Result;
 use crate::spatial::Force;
@@ -50,11 +50,16 @@ fn accelerations(spec: &Spec, data: &mut Data, planned: &NodeValues, q: &[f64], 
 
 /// Simulates with `steps` RK4 steps over the plan's duration.
 pub fn simulate(spec: &Spec, plan: &Plan, steps: usize) -> Result<Simulation> {
+    simulate_x(spec, &plan.x, steps)
+}
+
+/// [`simulate`] for the solver unknowns `x` of a plan (e.g. reloaded from a plan directory).
+pub fn simulate_x(spec: &Spec, x: &[f64], steps: usize) -> Result<Simulation> {
     let steps = steps.max(1);
     let h = spec.duration / steps as f64;
     // The planned torques at every RK4 stage time (each step needs t, t + h/2, t + h).
     let stage_times: Vec<f64> = (0..=2 * steps).map(|k| (k as f64 * h / 2.0).min(spec.duration)).collect();
-    let planned = sample(spec, plan, &stage_times)?;
+    let planned = sample_x(spec, x, &stage_times)?;
     let nv = spec.model.nv();
     let mut data = Data::new(&spec.model);
     let (mut q, mut v) = (planned[0].q.clone(), planned[0].qd.clone());

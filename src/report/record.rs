@@ -128,3 +128,21 @@ pub fn load_plan_dir(dir: &Path) -> Result<(Model, PlanRecord)> {
     }
     Ok((model, record))
 }
+
+/// A plan directory's task and solver unknowns: `task.resolved.toml` (absolute paths) and `plan.json`'s
+/// control points — enough to sample or simulate the plan again without re-solving.
+pub fn load_plan_task(dir: &Path) -> Result<(crate::plan::task::Task, Vec<f64>)> {
+    let (_, record) = load_plan_dir(dir)?;
+    let task = crate::plan::task::Task::load(&dir.join("task.resolved.toml"))?;
+    let problem = crate::plan::Transcription::new(&task.spec)?;
+    let layout = &problem.layout;
+    let (nv, nl) = (layout.nv, layout.n_lambda);
+    if record.n_ctrl != task.spec.n_ctrl
+        || record.ctrl.len() != record.n_ctrl * nv
+        || record.lambda_ctrl.len() != record.n_ctrl * nl
+    {
+        return Err(Error::input(dir.display().to_string(), "plan.json", "its control points do not fit task.resolved.toml"));
+    }
+    let x = layout.pack(&record.ctrl, &record.lambda_ctrl);
+    Ok((task, x))
+}
