@@ -195,7 +195,7 @@ pub fn close_loop(
 }
 
 /// The initial guess as solver unknowns.
-pub fn initial_x(spec: &Spec, problem: &Transcription) -> Result<Vec<f64>> {
+pub fn initial_x(spec: &Spec, problem: &mut Transcription) -> Result<Vec<f64>> {
     let nv = spec.model.nv();
     let n = spec.n_ctrl;
     let spline = &problem.spline;
@@ -219,7 +219,58 @@ pub fn initial_x(spec: &Spec, problem: &Transcription) -> Result<Vec<f64>> {
         }
     }
     let lambda = vec![0.0; n * problem.layout.n_lambda];
-    Ok(problem.layout.pack(&ctrl, &lambda))
+    let mut x = problem.layout.pack(&ctrl, &lambda);
+    initial_contact_forces(problem, &mut x)?;
+    Ok(x)
+}
+
+/// The contact forces that best carry the initial motion: the residuals are linear in the contact-force
+/// control points, so for the guessed motion the least-squares forces are one linear solve. Starting from
+/// them instead of zero forces spares the solver its first and hardest iterations on closed loops.
+fn initial_contact_forces(problem: &mut Transcription, x: &mut [f64]) -> Result<()> {
+    let layout = problem.layout.clone();
+    if layout.n_lambda == 0 {
+        return Ok(());
+    }
+    let columns: Vec<usize> = (0..layout.n_ctrl)
+        .flat_map(|j| (0..layout.n_lambda).map(move |m| (j, m)))
+        .map(|(j, m)| layout.lambda_var(j, m))
+        .collect();
+    let dims = problem.dims();
+    let fail = |e: String| Error::task("task", "initial guess", e);
+    let mut eval = solve::Evaluation::new(dims, &problem.jacobian_patterns()).map_err(|e| fail(e.to_string()))?;
+    problem.evaluate(x, true, &mut eval).map_err(fail)?;
+    let m = columns.len();
+    let mut a = nalgebra::DMatrix::<f64>::zeros(m, m);
+    let mut b = nalgebra::DVector::<f64>::zeros(m);
+    let position: std::collections::BTreeMap<usize, usize> = columns.iter().enumerate().map(|(k, &c)| (c, k)).collect();
+    for row in 0..dims.n_res {
+        let entries: Vec<(usize, f64)> = eval
+            .jr
+            .row_cols(row)
+            .iter()
+            .zip(eval.jr.row_values(row))
+            .filter_map(|(c, v)| position.get(c).map(|&k| (k, *v)))
+            .collect();
+        for &(k, vk) in &entries {
+            b[k] -= vk * eval.r[row];
+            for &(l, vl) in &entries {
+                a[(k, l)] += vk * vl;
+            }
+        }
+    }
+    // A whisper of ridge keeps forces that the motion does not determine (e.g. along a frictionless plane's
+    // tangent) at zero rather than arbitrary.
+    let ridge = 1e-9 * (0..m).map(|k| a[(k, k)]).fold(0.0, f64::max).max(1e-300);
+    for k in 0..m {
+        a[(k, k)] += ridge;
+    }
+    if let Some(delta) = a.cholesky().map(|c| c.solve(&b)) {
+        for (k, &c) in columns.iter().enumerate() {
+            x[c] += delta[k];
+        }
+    }
+    Ok(())
 }
 
 fn objective_at(problem: &mut Transcription, x: &[f64]) -> std::result::Result<f64, String> {
@@ -265,7 +316,7 @@ pub fn check_between_nodes(spec: &Spec, x: &[f64], per_span: usize) -> Result<Op
 pub fn plan(spec: &Spec, solver: SolverKind, settings: &Settings, observer: &mut dyn FnMut(&Progress)) -> Result<Plan> {
     validate(spec, "task")?;
     let mut problem = Transcription::new(spec)?;
-    let x0 = initial_x(spec, &problem)?;
+    let x0 = initial_x(spec, &mut problem)?;
     let initial_objective = objective_at(&mut problem, &x0).map_err(|e| Error::task("task", "initial guess", e))?;
     let started = Instant::now();
     let mut outcome = match solver {
@@ -326,7 +377,7 @@ pub fn sample_x(spec: &Spec, x: &[f64], times: &[f64]) -> Result<Vec<NodeValues>
 
 /// The initial guess of `spec`, sampled at `times` (s) — for plots that show it beside the optimum.
 pub fn sample_initial_guess(spec: &Spec, times: &[f64]) -> Result<Vec<NodeValues>> {
-    let problem = Transcription::new(spec)?;
-    let x0 = initial_x(spec, &problem)?;
+    let mut problem = Transcription::new(spec)?;
+    let x0 = initial_x(spec, &mut problem)?;
     sample_x(spec, &x0, times)
 }
