@@ -168,3 +168,23 @@ fn simulate_reloads_a_plan_directory() {
     assert_ne!(code, 0);
     assert!(stderr.contains("holds no plan"), "{stderr}");
 }
+
+#[test]
+fn built_in_humans_export_to_urdf_and_figure_files() {
+    let dir = scratch("figure");
+    for structure in ["sagittal", "free_arms", "hanging", "push_up"] {
+        for ext in ["urdf", "toml"] {
+            let out = dir.join(format!("{structure}.{ext}"));
+            let (code, stdout, stderr) =
+                run(mintorque().args(["figure", "--human", structure, "--stature", "1.7", "--mass", "70", "--out"]).arg(&out));
+            assert_eq!(code, 0, "{stderr}");
+            assert!(stdout.contains("wrote"));
+            // It reads back, through the same loader a task uses.
+            let model = mintorque::model::load_any(&out).unwrap_or_else(|e| panic!("{e}"));
+            assert!((model.total_mass() - 70.0).abs() < 0.8, "{structure}.{ext}: {} kg", model.total_mass());
+        }
+    }
+    let (code, _, stderr) = run(mintorque().args(["figure", "--human", "octopus", "--out"]).arg(dir.join("x.urdf")));
+    assert_ne!(code, 0);
+    assert!(stderr.contains("sagittal"), "{stderr}");
+}

@@ -56,6 +56,24 @@ enum Command {
         /// The plan directory.
         dir: PathBuf,
     },
+    /// Write a figure — a built-in human or a model file — as URDF (for any URDF viewer) or as a figure
+    /// file (TOML) to edit.
+    Figure {
+        /// A URDF or figure file to convert.
+        model: Option<PathBuf>,
+        /// A built-in human structure instead: sagittal, free_arms, hanging, push_up.
+        #[arg(long, conflicts_with = "model")]
+        human: Option<String>,
+        /// Stature of the built-in human (m, 0.5–2.5).
+        #[arg(long, default_value_t = 1.83)]
+        stature: f64,
+        /// Body mass of the built-in human (kg, 20–250).
+        #[arg(long, default_value_t = 81.0)]
+        mass: f64,
+        /// Output file: .urdf for URDF, .toml for a figure file.
+        #[arg(long, short)]
+        out: PathBuf,
+    },
     /// List the bundled examples (the paper's experiments), one line each.
     Examples,
     /// Integrate the forward dynamics under a plan's torques from its start state and report the drift from
@@ -208,6 +226,26 @@ fn run(cli: Cli) -> Result<ExitCode> {
         Command::View { dir } => {
             report::viewer::write_view_files(&dir)?;
             report::viewer::open_in_browser(&dir.join(report::viewer::VIEW_FILES[0]));
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Figure { model, human, stature, mass, out } => {
+            use mintorque::model::{figure, human as jack, urdf_export};
+            let model = match (model, human) {
+                (Some(path), None) => load_model(&path)?,
+                (None, Some(name)) => {
+                    jack::Structure::from_name(&name)?.build(jack::HumanParams { stature_m: stature, mass_kg: mass })?
+                }
+                _ => anyhow::bail!("give a model file or --human NAME"),
+            };
+            let text = match out.extension().and_then(|e| e.to_str()) {
+                Some("urdf") | Some("xml") => urdf_export::to_urdf(&model),
+                Some("toml") => figure::to_toml(&model),
+                _ => anyhow::bail!("{}: the output must end in .urdf or .toml", out.display()),
+            };
+            let parent = out.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+            let file = out.file_name().and_then(|f| f.to_str()).context("--out must name a file")?;
+            report::write_files(parent, &[(file, text.into_bytes())])?;
+            println!("wrote {} ({} joints)", out.display(), model.nv());
             Ok(ExitCode::SUCCESS)
         }
         Command::Examples => {
