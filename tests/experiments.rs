@@ -233,3 +233,32 @@ fn every_example_is_listed_and_parses() {
         assert!(!e.summary().is_empty());
     }
 }
+
+/// The balance constraint binds and holds: narrow the support to 1–5 cm in front of the ankle, where the
+/// unconstrained lift's centre of pressure does not stay, and the planned motion keeps it there.
+#[test]
+fn balance_constraint_binds() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/weight_lift_earth.toml");
+    let task = Task::load(&path).unwrap();
+    let cop_range = |spec: &Spec| {
+        let planned = plan::plan(spec, task.solver, &task.settings, &mut |_| {}).unwrap();
+        assert!(planned.converged(), "{}", planned.outcome.reason);
+        let times: Vec<f64> = (0..=200).map(|k| spec.duration * k as f64 / 200.0).collect();
+        let cop: Vec<f64> =
+            plan::sample(spec, &planned, &times).unwrap().iter().map(|s| -s.root_wrench.n.y / s.root_wrench.f.z).collect();
+        (cop.iter().cloned().fold(f64::INFINITY, f64::min), cop.iter().cloned().fold(f64::NEG_INFINITY, f64::max))
+    };
+    let mut free = task.spec.clone();
+    free.balance = None;
+    let (lo, hi) = cop_range(&free);
+    let mut narrow = task.spec.clone();
+    narrow.balance = Some(mintorque::plan::Balance { x: [0.01, 0.05], y: [-0.15, 0.15], ground_z: 0.0 });
+    // A binding constraint bulges between the nodes where it is imposed (summary.json reports by how much);
+    // 8 nodes per span keep that bulge under the 2 mm allowed below (4 per span leave ~1.5 cm).
+    narrow.nodes_per_span = 8;
+    let (nlo, nhi) = cop_range(&narrow);
+    println!("centre of pressure: free [{lo:.4}, {hi:.4}] m, constrained [{nlo:.4}, {nhi:.4}] m");
+    assert!(lo < 0.01 || hi > 0.05, "the unconstrained motion already fits: the test would prove nothing");
+    // 2 mm of slack for what happens between the nodes.
+    assert!(nlo > 0.01 - 0.002 && nhi < 0.05 + 0.002, "[{nlo}, {nhi}]");
+}
