@@ -16,12 +16,16 @@
 //! defined at every time). Gradients follow eq. 33 from the engine's `∂τ/∂q`, `∂τ/∂q̇` and `H`, touching
 //! only the four non-zero basis functions at each node.
 
+mod constraints;
+mod objective;
+
 use super::spec::{Objective, Spec};
 use crate::dynamics::point_force::{add_generalized_force, generalized_force_derivative, path_dofs, point_jacobian};
 use crate::dynamics::{kinematics, rnea::rnea, rnea_derivatives::rnea_derivatives, Data};
 use crate::solve::{ConstraintKind, Dims, Evaluation, Patterns, Problem, Scales};
 use crate::spatial::{Force, Vec3};
 use crate::trajectory::bspline::{BasisAt, CubicBSpline, Nodes};
+pub use constraints::IneqRow;
 
 /// Where each control point's unknowns sit in `x`.
 #[derive(Clone, Debug)]
@@ -101,52 +105,6 @@ struct Derivatives<'a> {
     lambda: Option<&'a [f64]>,
 }
 
-/// The residual of `½ τᵀH⁻¹τ`: `r = L⁻¹τ` with `H = LLᵀ`. Its exact Jacobian needs `∂L/∂q`; instead we use
-/// `J = L⁻¹ ∂τ − r (½ g)ᵀ / ‖r‖²` with `gₖ = yᵀ (∂H/∂qₖ) y`, `y = H⁻¹τ`, whose `Jᵀr = (∂τ)ᵀy − ½ g` is the
-/// exact gradient of `½ τᵀH⁻¹τ` — so the solvers' stationarity test, and the optimum, are exact, and
-/// `JᵀJ` stays a sound Gauss–Newton model. `g` costs one more derivative pass: `yᵀ(∂H/∂qₖ)y` is
-/// `yᵀ ∂(H y)/∂qₖ`, the `∂τ/∂q` of inverse dynamics at `(q, 0, y)` without gravity.
-fn inverse_inertia_residual(model: &crate::Model, data: &mut Data, w: &mut NodeWork, nv: usize, nl: usize, jac: bool) {
-    use nalgebra::{DMatrix, DVector};
-    let h = if jac { data.M.clone() } else { crate::dynamics::crba::crba(model, data, &w.q).clone() };
-    let Some(chol) = h.cholesky() else {
-        // H is positive definite for every valid model; keep the values finite if rounding says otherwise.
-        w.res.copy_from_slice(&w.tau);
-        return;
-    };
-    let l = chol.l();
-    let tau = DVector::from_column_slice(&w.tau);
-    let r = l.solve_lower_triangular(&tau).expect("L is invertible");
-    w.res.copy_from_slice(r.as_slice());
-    if !jac {
-        return;
-    }
-    let y = chol.solve(&tau);
-    let zeros = vec![0.0; nv];
-    rnea_derivatives(model, data, &w.q, &zeros, y.as_slice(), &Vec3::zeros(), None);
-    let g = data.dtau_dq.transpose() * &y;
-    let rr = r.norm_squared();
-    let solve_rows = |src: &[f64], cols: usize, dst: &mut [f64], correct: bool| {
-        // src is row-major nv × cols; dst = L⁻¹ src (− r ½gᵀ/‖r‖² for the q-derivatives).
-        let m = DMatrix::from_row_slice(nv, cols, src);
-        let mut x = l.solve_lower_triangular(&m).expect("L is invertible");
-        if correct && rr > 0.0 {
-            x -= &r * (g.transpose() * (0.5 / rr));
-        }
-        for i in 0..nv {
-            for c in 0..cols {
-                dst[i * cols + c] = x[(i, c)];
-            }
-        }
-    };
-    solve_rows(&w.dq, nv, &mut w.rdq, true);
-    solve_rows(&w.dv, nv, &mut w.rdv, false);
-    solve_rows(&w.da, nv, &mut w.rda, false);
-    if nl > 0 {
-        solve_rows(&w.dl, nl, &mut w.rdl, false);
-    }
-}
-
 impl NodeWork {
     /// The derivatives of the objective's residual `l` at this node.
     fn residual_row(&self, l: usize, nv: usize, nl: usize) -> Derivatives<'_> {
@@ -167,25 +125,6 @@ impl NodeWork {
             lambda: (nl > 0).then(|| &self.dl[l * nl..(l + 1) * nl]),
         }
     }
-}
-
-/// One inequality row at a node.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum IneqRow {
-    /// `q_i − q_up ≤ 0`.
-    UpperPosition(usize),
-    /// `q_low − q_i ≤ 0`.
-    LowerPosition(usize),
-    /// `τ_i − τ_max ≤ 0`.
-    UpperTorque(usize),
-    /// `−τ_max − τ_i ≤ 0`.
-    LowerTorque(usize),
-    /// `−n·λ_c ≤ 0` for contact `c`.
-    Push(usize),
-    /// `±t·λ_c − μ/√2 n·λ_c ≤ 0`, tangent `t` = the `k`-th of (t₁, −t₁, t₂, −t₂).
-    Friction(usize, usize),
-    /// Centre of pressure: 0 `x ≤ x_max`, 1 `x ≥ x_min`, 2 `y ≤ y_max`, 3 `y ≥ y_min`, 4 `f_z ≥ 0`.
-    Balance(usize),
 }
 
 /// Per-contact data fixed for the whole solve.
@@ -520,7 +459,7 @@ impl<'s> Transcription<'s> {
                     }
                 }
             }
-            Objective::TorqueInverseInertia => inverse_inertia_residual(model, data, w, nv, nl, jac),
+            Objective::TorqueInverseInertia => objective::inverse_inertia_residual(model, data, w, nv, nl, jac),
         }
     }
 
@@ -551,25 +490,6 @@ impl<'s> Transcription<'s> {
     }
 }
 
-/// The coefficients `c` of a balance row `c · W ≤ 0` in the root reaction wrench `W = [n; f]` (about the
-/// world origin), for the centre of pressure on the plane `z = z₀`: with `n' = n − z₀ ẑ × f`, the centre
-/// of pressure is `(−n'_y/f_z, n'_x/f_z)`; multiplying through by `f_z ≥ 0` keeps the rows linear.
-fn balance_coefficients(row: usize, b: &super::spec::Balance) -> [f64; 6] {
-    let z0 = b.ground_z;
-    // [n_x, n_y, n_z, f_x, f_y, f_z]
-    match row {
-        0 => [0.0, -1.0, 0.0, z0, 0.0, -b.x[1]],
-        1 => [0.0, 1.0, 0.0, -z0, 0.0, b.x[0]],
-        2 => [1.0, 0.0, 0.0, 0.0, z0, -b.y[1]],
-        3 => [-1.0, 0.0, 0.0, 0.0, -z0, b.y[0]],
-        _ => [0.0, 0.0, 0.0, 0.0, 0.0, -1.0],
-    }
-}
-
-fn dot6(c: &[f64; 6], f: &Force) -> f64 {
-    c[0] * f.n.x + c[1] * f.n.y + c[2] * f.n.z + c[3] * f.f.x + c[4] * f.f.y + c[5] * f.f.z
-}
-
 impl Transcription<'_> {
     /// The contact-force columns of contact `c` at a node.
     fn contact_columns(&self, basis: &BasisAt, c: usize) -> Vec<usize> {
@@ -594,46 +514,6 @@ impl Transcription<'_> {
     /// Starts a solve-independent evaluation: the control points of `x`.
     pub fn set_x(&mut self, x: &[f64]) {
         self.layout.unpack(x, &self.fixed_values, &mut self.ctrl, &mut self.lam_ctrl);
-    }
-}
-
-impl Transcription<'_> {
-    /// The loop closures `Φ = Eᵀ(p − target)` at the contact nodes, and their Jacobians.
-    fn contact_rows(&mut self, want_jac: bool, out: &mut Evaluation) {
-        let spec = self.spec;
-        let model = &spec.model;
-        let nv = self.layout.nv;
-        if spec.contacts.is_empty() {
-            return;
-        }
-        for k in 0..self.contact_nodes.t.len() {
-            let basis = self.contact_nodes.basis[k];
-            let w = &mut self.work;
-            basis.eval(&self.ctrl, nv, &mut w.q, &mut w.qd, &mut w.qdd);
-            kinematics::placements(model, &mut self.data, &w.q);
-            for (c, contact) in spec.contacts.iter().enumerate() {
-                let info = &self.contacts[c];
-                let p = kinematics::frame_placement(model, &self.data, contact.frame).translation;
-                if want_jac {
-                    point_jacobian(&self.data, &info.path, &p, &mut w.jac[c]);
-                }
-                for (m, e) in info.directions.iter().enumerate() {
-                    let row = k * self.n_eq_node + info.offset + m;
-                    out.h[row] = e.dot(&(p - contact.target));
-                    if want_jac {
-                        let (d_q, rest) = w.row.split_at_mut(nv);
-                        let zeros = &mut rest[..nv];
-                        d_q.iter_mut().for_each(|x| *x = 0.0);
-                        zeros.iter_mut().for_each(|x| *x = 0.0);
-                        for (col, &dof) in info.path.iter().enumerate() {
-                            d_q[dof] = e.dot(&w.jac[c][col]);
-                        }
-                        let d = Derivatives { q: d_q, v: zeros, a: zeros, lambda: None };
-                        Self::chain_rule(&self.layout, &basis, 1.0, d, out.jh.row_values_mut(row));
-                    }
-                }
-            }
-        }
     }
 }
 
@@ -681,7 +561,6 @@ impl Problem for Transcription<'_> {
         self.contact_rows(want_jac, out);
         let nv = self.layout.nv;
         let nl = self.layout.n_lambda;
-        let n_ineq = self.n_ineq_node();
         for k in 0..self.n_nodes() {
             self.eval_node(k, want_jac);
             let basis = self.nodes.basis[k];
@@ -694,88 +573,7 @@ impl Problem for Transcription<'_> {
                     Self::chain_rule(&self.layout, &basis, sw, w.residual_row(l, nv, nl), out.jr.row_values_mut(k * nv + l));
                 }
             }
-            // Inequalities.
-            for (r, row) in self.ineq_rows.iter().enumerate() {
-                let gi = k * n_ineq + r;
-                match *row {
-                    IneqRow::UpperPosition(i) | IneqRow::LowerPosition(i) => {
-                        let upper = matches!(row, IneqRow::UpperPosition(_));
-                        let sign = if upper { 1.0 } else { -1.0 };
-                        out.g[gi] = if upper { w.q[i] - self.limits_up[i] } else { self.limits_low[i] - w.q[i] };
-                        if want_jac {
-                            let vals = out.jg.row_values_mut(gi);
-                            let mut pos = 0;
-                            for a in 0..4 {
-                                if !self.layout.fixed[basis.first + a] {
-                                    vals[pos] = sign * basis.b[a];
-                                    pos += 1;
-                                }
-                            }
-                        }
-                    }
-                    IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) => {
-                        let upper = matches!(row, IneqRow::UpperTorque(_));
-                        let sign = if upper { 1.0 } else { -1.0 };
-                        out.g[gi] = sign * w.tau[i] - self.effort[i];
-                        if want_jac {
-                            Self::chain_rule(&self.layout, &basis, sign, w.torque_row(i, nv, nl), out.jg.row_values_mut(gi));
-                        }
-                    }
-                    IneqRow::Push(c) | IneqRow::Friction(c, _) => {
-                        let info = &self.contacts[c];
-                        let contact = &self.spec.contacts[c];
-                        let n = contact.push_normal.unwrap_or(Vec3::z());
-                        // The row as a linear functional of λ (world): coefficient vector `a`.
-                        let a = match *row {
-                            IneqRow::Push(_) => -n,
-                            IneqRow::Friction(_, t) => {
-                                let mu = contact.friction.unwrap_or(0.0) / std::f64::consts::SQRT_2;
-                                let tangent = match t {
-                                    0 => info.tangents.0,
-                                    1 => -info.tangents.0,
-                                    2 => info.tangents.1,
-                                    _ => -info.tangents.1,
-                                };
-                                tangent - n * mu
-                            }
-                            _ => unreachable!(),
-                        };
-                        let coef: Vec<f64> = info.directions.iter().map(|e| a.dot(e)).collect();
-                        out.g[gi] = coef.iter().enumerate().map(|(m, c)| c * w.lambda[info.offset + m]).sum();
-                        if want_jac {
-                            let vals = out.jg.row_values_mut(gi);
-                            let mut pos = 0;
-                            for a in 0..4 {
-                                for c in &coef {
-                                    vals[pos] = c * basis.b[a] * self.layout.lambda_scale;
-                                    pos += 1;
-                                }
-                            }
-                        }
-                    }
-                    IneqRow::Balance(b) => {
-                        let balance = self.spec.balance.as_ref().expect("balance rows only with a balance constraint");
-                        let c = balance_coefficients(b, balance);
-                        out.g[gi] = dot6(&c, &w.w);
-                        if want_jac {
-                            let (d_q, rest) = w.row.split_at_mut(nv);
-                            let (d_v, rest) = rest.split_at_mut(nv);
-                            let (d_a, d_l) = rest.split_at_mut(nv);
-                            for i in 0..nv {
-                                d_q[i] = dot6(&c, &w.w_dq[i]);
-                                d_v[i] = dot6(&c, &w.w_dv[i]);
-                                d_a[i] = dot6(&c, &w.w_da[i]);
-                            }
-                            for m in 0..nl {
-                                d_l[m] = dot6(&c, &w.w_dl[m]);
-                            }
-                            let d_l = (nl > 0).then_some(&d_l[..nl]);
-                            let d = Derivatives { q: d_q, v: d_v, a: d_a, lambda: d_l };
-                            Self::chain_rule(&self.layout, &basis, 1.0, d, out.jg.row_values_mut(gi));
-                        }
-                    }
-                }
-            }
+            self.inequality_rows(k, want_jac, out);
         }
         Ok(())
     }
