@@ -1,8 +1,8 @@
 //! # mintorque
 //!
 //! Minimum-joint-torque motion planning for articulated figures, after J. Lo, G. Huang and D. Metaxas,
-//! *Human motion planning based on recursive dynamics and optimal control techniques* (Multibody System
-//! Dynamics, 2002). The pipeline, one module per stage:
+//! *Human motion planning based on recursive dynamics and optimal control techniques* (2001). The
+//! pipeline, one module per stage:
 //!
 //! ```text
 //! task ──► model ──► plan (B-spline transcription) ──► solve ──► solution ──► report
