@@ -55,6 +55,9 @@ enum Command {
     View {
         /// The plan directory.
         dir: PathBuf,
+        /// The filmstrip's camera: side (looking along +y), front or top.
+        #[arg(long, default_value = "side")]
+        filmstrip: String,
     },
     /// Write a figure — a built-in human or a model file — as URDF (for any URDF viewer) or as a figure
     /// file (TOML) to edit.
@@ -223,8 +226,9 @@ fn run(cli: Cli) -> Result<ExitCode> {
             println!("wrote {}", path.display());
             Ok(ExitCode::SUCCESS)
         }
-        Command::View { dir } => {
-            report::viewer::write_view_files(&dir)?;
+        Command::View { dir, filmstrip } => {
+            let view: report::filmstrip::View = filmstrip.parse().map_err(anyhow::Error::msg)?;
+            report::viewer::write_view_files_with(&dir, view)?;
             report::viewer::open_in_browser(&dir.join(report::viewer::VIEW_FILES[0]));
             Ok(ExitCode::SUCCESS)
         }

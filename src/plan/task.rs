@@ -336,6 +336,13 @@ pub struct OutputSection {
     /// Plots (SVG and PNG) of q, q̇, q̈, τ and contact forces.
     #[serde(default = "yes")]
     pub plots: bool,
+    /// The filmstrip's camera: "side" (default, looking along +y), "front" or "top".
+    #[serde(default = "side")]
+    pub filmstrip_view: String,
+}
+
+fn side() -> String {
+    "side".into()
 }
 
 fn hundred() -> f64 {
@@ -344,7 +351,7 @@ fn hundred() -> f64 {
 
 impl Default for OutputSection {
     fn default() -> Self {
-        OutputSection { sample_rate: 100.0, strength: BTreeMap::new(), plots: true }
+        OutputSection { sample_rate: 100.0, strength: BTreeMap::new(), plots: true, filmstrip_view: side() }
     }
 }
 
@@ -413,6 +420,9 @@ impl Task {
             time_limit: s.time_limit,
             ..Settings::default()
         };
+        if let Err(m) = file.output.filmstrip_view.parse::<crate::report::filmstrip::View>() {
+            return Err(Error::task(&origin, "output.filmstrip_view", m));
+        }
         let rate = file.output.sample_rate;
         if !(rate.is_finite() && rate > 0.0) {
             return Err(Error::task(

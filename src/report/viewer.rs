@@ -213,6 +213,11 @@ pub const VIEW_FILES: [&str; 3] = ["motion.html", "filmstrip.svg", "filmstrip.pn
 /// `plan.json`, `model.figure.toml` and (if present) `summary.json`. The files are written to a staging
 /// directory and renamed into place, so a reader never sees half a file.
 pub fn write_view_files(dir: &Path) -> Result<()> {
+    write_view_files_with(dir, View::Side)
+}
+
+/// [`write_view_files`] with the filmstrip seen from `view`.
+pub fn write_view_files_with(dir: &Path, view: View) -> Result<()> {
     let (model, record) = load_plan_dir(dir)?;
     scene::check_record(&model, &record).map_err(|m| Error::input(dir.join("plan.json").display().to_string(), "samples", m))?;
     let summary_path = dir.join("summary.json");
@@ -222,8 +227,8 @@ pub fn write_view_files(dir: &Path) -> Result<()> {
         Err(e) => return Err(Error::io(summary_path, e)),
     };
     let html = motion_html(&model, &record, summary.as_deref());
-    let svg = filmstrip_svg(&model, &record, FILMSTRIP_FRAMES, View::Side);
-    let png = filmstrip_png(&model, &record, FILMSTRIP_FRAMES, View::Side)?;
+    let svg = filmstrip_svg(&model, &record, FILMSTRIP_FRAMES, view);
+    let png = filmstrip_png(&model, &record, FILMSTRIP_FRAMES, view)?;
     super::write_files(dir, &[(VIEW_FILES[0], html.into_bytes()), (VIEW_FILES[1], svg.into_bytes()), (VIEW_FILES[2], png)])
 }
 
