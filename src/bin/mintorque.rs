@@ -114,6 +114,13 @@ enum SolverArg {
 /// Exit code of a plan that did not converge (its results are still written, marked as such).
 const NOT_CONVERGED: u8 = 3;
 
+/// Writes one file whole or not at all.
+fn write_one(path: &Path, bytes: Vec<u8>) -> Result<()> {
+    let parent = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let file = path.file_name().and_then(|f| f.to_str()).context("--out must name a file")?;
+    Ok(report::write_files(parent, &[(file, bytes)])?)
+}
+
 fn load_model(path: &Path) -> Result<mintorque::Model> {
     Ok(mintorque::model::load_any(path)?)
 }
@@ -220,9 +227,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             let (model, record) = report::record::load_plan_dir(&dir)?;
             let (name, bytes) = report::export::export(&model, &record, format)?;
             let path = out.unwrap_or_else(|| dir.join(&name));
-            let parent = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
-            let file = path.file_name().and_then(|f| f.to_str()).context("--out must name a file")?;
-            report::write_files(parent, &[(file, bytes)])?;
+            write_one(&path, bytes)?;
             println!("wrote {}", path.display());
             Ok(ExitCode::SUCCESS)
         }
@@ -246,9 +251,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
                 Some("toml") => figure::to_toml(&model),
                 _ => anyhow::bail!("{}: the output must end in .urdf or .toml", out.display()),
             };
-            let parent = out.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
-            let file = out.file_name().and_then(|f| f.to_str()).context("--out must name a file")?;
-            report::write_files(parent, &[(file, text.into_bytes())])?;
+            write_one(&out, text.into_bytes())?;
             println!("wrote {} ({} joints)", out.display(), model.nv());
             Ok(ExitCode::SUCCESS)
         }

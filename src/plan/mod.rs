@@ -13,7 +13,6 @@ pub use transcription::{NodeValues, Transcription};
 
 use crate::error::{Error, Result};
 use crate::solve::{self, Outcome, Problem, Progress, Settings, Solver};
-use crate::trajectory::bspline::CubicBSpline;
 use std::time::Instant;
 
 /// Which solver to use.
@@ -117,7 +116,7 @@ pub fn validate(spec: &Spec, origin: &str) -> Result<()> {
         for (name, q) in [("start", &spec.start), ("goal", &spec.goal)] {
             crate::dynamics::kinematics::placements(model, &mut data, q);
             let p = crate::dynamics::kinematics::frame_placement(model, &data, c.frame).translation;
-            let miss: f64 = c.directions().iter().map(|e| e.dot(&(p - c.target)).powi(2)).sum::<f64>().sqrt();
+            let miss = c.distance(&p);
             if miss > 1e-4 {
                 return err(
                     &format!("constraints.contact \"{}\"", c.name),
@@ -282,11 +281,9 @@ fn objective_at(problem: &mut Transcription, x: &[f64]) -> std::result::Result<f
 
 /// The worst scaled violation on a grid of `per_span` evenly spaced times per knot span (ends included).
 pub fn check_between_nodes(spec: &Spec, x: &[f64], per_span: usize) -> Result<Option<(f64, String)>> {
-    let spline = CubicBSpline::new(spec.n_ctrl, spec.duration)?;
-    let count = spline.n_spans() * per_span;
+    let count = (spec.n_ctrl - 3) * per_span; // a clamped cubic has N − 3 knot spans
     let times: Vec<f64> = (0..=count).map(|k| spec.duration * k as f64 / count as f64).collect();
-    let nodes = spline.grid(&times)?;
-    let mut grid = Transcription::with_nodes(spec, spline, nodes.clone(), nodes);
+    let mut grid = Transcription::on_grid(spec, &times)?;
     let dims = grid.dims();
     if dims.n_eq + dims.n_ineq == 0 {
         return Ok(None);
@@ -368,9 +365,7 @@ pub fn sample(spec: &Spec, plan: &Plan, times: &[f64]) -> Result<Vec<NodeValues>
 
 /// The motion of unknowns `x` (e.g. the initial guess, [`initial_x`]) sampled at `times` (s).
 pub fn sample_x(spec: &Spec, x: &[f64], times: &[f64]) -> Result<Vec<NodeValues>> {
-    let spline = CubicBSpline::new(spec.n_ctrl, spec.duration)?;
-    let nodes = spline.grid(times)?;
-    let mut t = Transcription::with_nodes(spec, spline, nodes.clone(), nodes);
+    let mut t = Transcription::on_grid(spec, times)?;
     t.set_x(x);
     Ok((0..t.len()).map(|k| t.node_values(k)).collect())
 }

@@ -37,6 +37,11 @@ pub struct Contact {
 impl Contact {
     /// An orthonormal basis `E` (columns) of the constrained directions: `Φ = Eᵀ(p − target)`, and the
     /// reaction is `λ = E λ̃`.
+    /// How far the world point `p` is from satisfying this contact (m): `‖Eᵀ(p − target)‖`.
+    pub fn distance(&self, p: &Vec3) -> f64 {
+        self.directions().iter().map(|e| e.dot(&(p - self.target)).powi(2)).sum::<f64>().sqrt()
+    }
+
     pub fn directions(&self) -> Vec<Vec3> {
         match &self.kind {
             ContactKind::Point => vec![Vec3::x(), Vec3::y(), Vec3::z()],

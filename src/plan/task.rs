@@ -473,9 +473,15 @@ fn load_model(m: &ModelSection, base: &Path, origin: &str) -> Result<Model> {
     load_human(name, m.stature, m.mass, origin)
 }
 
+/// The built-in human's size: 1.83 m and 81 kg unless given.
+fn human_params(stature: Option<f64>, mass: Option<f64>) -> crate::model::human::HumanParams {
+    let d = crate::model::human::HumanParams::default();
+    crate::model::human::HumanParams { stature_m: stature.unwrap_or(d.stature_m), mass_kg: mass.unwrap_or(d.mass_kg) }
+}
+
 /// A built-in human (`model::human`), 1.83 m and 81 kg unless given.
 fn load_human(name: &str, stature: Option<f64>, mass: Option<f64>, origin: &str) -> Result<Model> {
-    use crate::model::human::{HumanParams, Structure};
+    use crate::model::human::Structure;
     let in_task = |e: Error| match e {
         Error::Model { element, message, .. } => {
             let field = match element.as_str() {
@@ -489,9 +495,7 @@ fn load_human(name: &str, stature: Option<f64>, mass: Option<f64>, origin: &str)
         other => other,
     };
     let structure = Structure::from_name(name).map_err(in_task)?;
-    let defaults = HumanParams::default();
-    let params = HumanParams { stature_m: stature.unwrap_or(defaults.stature_m), mass_kg: mass.unwrap_or(defaults.mass_kg) };
-    structure.build(params).map_err(in_task)
+    structure.build(human_params(stature, mass)).map_err(in_task)
 }
 
 /// Turns a posture (names → degrees or metres) into `q` over `base`.
@@ -549,11 +553,7 @@ pub fn resolve(file: &TaskFile, base: &Path, origin: &str) -> Result<Spec> {
                 .as_deref()
                 .ok_or_else(|| Error::task(origin, "motion.base", "\"reference\" needs a built-in human model"))?;
             let structure = crate::model::human::Structure::from_name(name)?;
-            let d = crate::model::human::HumanParams::default();
-            structure.reference_pose(crate::model::human::HumanParams {
-                stature_m: file.model.stature.unwrap_or(d.stature_m),
-                mass_kg: file.model.mass.unwrap_or(d.mass_kg),
-            })?
+            structure.reference_pose(human_params(file.model.stature, file.model.mass))?
         }
         other => return Err(Error::task(origin, "motion.base", format!("unknown base posture \"{other}\" (zero, reference)"))),
     };

@@ -92,17 +92,7 @@ impl Summary {
                 let min_normal = contact
                     .push_normal
                     .map(|n| samples.iter().map(|s| n.dot(&s.contact_forces[c])).fold(f64::INFINITY, f64::min));
-                let drift = samples
-                    .iter()
-                    .map(|s| {
-                        contact
-                            .directions()
-                            .iter()
-                            .map(|e| e.dot(&(s.contact_points[c] - contact.target)).powi(2))
-                            .sum::<f64>()
-                            .sqrt()
-                    })
-                    .fold(0.0, f64::max);
+                let drift = samples.iter().map(|s| contact.distance(&s.contact_points[c])).fold(0.0, f64::max);
                 ContactSummary {
                     name: contact.name.clone(),
                     peak_force_n: peak,

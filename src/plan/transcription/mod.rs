@@ -220,6 +220,14 @@ impl<'s> Transcription<'s> {
         Ok(Self::with_nodes(spec, spline, nodes, contact_nodes))
     }
 
+    /// The problem evaluated at the times `times` (s) instead of its quadrature nodes — every row, contacts
+    /// included, at every time (weights 0): for sampling a plan and checking it between the nodes.
+    pub fn on_grid(spec: &'s Spec, times: &[f64]) -> crate::Result<Self> {
+        let spline = CubicBSpline::new(spec.n_ctrl, spec.duration)?;
+        let nodes = spline.grid(times)?;
+        Ok(Self::with_nodes(spec, spline, nodes.clone(), nodes))
+    }
+
     /// The same problem evaluated at other nodes (a dense grid to check constraints between nodes).
     pub fn with_nodes(spec: &'s Spec, spline: CubicBSpline, nodes: Nodes, contact_nodes: Nodes) -> Self {
         let model = &spec.model;
