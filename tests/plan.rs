@@ -56,7 +56,7 @@ fn pendulum_optimum_is_the_free_swing() {
     assert!((end - q1).abs().to_degrees() < 0.05, "free swing ends at {:.3}°", end.to_degrees());
     let mut spec = Spec::new(m.clone(), vec![q0], vec![q1], half_period);
     spec.n_ctrl = 16;
-    for solver in [SolverKind::Structured, SolverKind::AuglagBfgs] {
+    for solver in [SolverKind::Structured, SolverKind::Newton, SolverKind::AuglagBfgs] {
         let planned = plan::plan(&spec, solver, &Settings::default(), &mut |_| {}).unwrap();
         assert!(planned.converged(), "{solver:?}: {}", planned.outcome.reason);
         let times: Vec<f64> = (0..=200).map(|k| half_period * k as f64 / 200.0).collect();
@@ -108,16 +108,18 @@ fn solvers_agree() {
     raise.n_ctrl = 8;
     for (name, spec) in [("fast pendulum", &fast), ("double pendulum raise", &raise)] {
         let a = plan::plan(spec, SolverKind::Structured, &Settings::default(), &mut |_| {}).unwrap();
-        let b = plan::plan(spec, SolverKind::AuglagBfgs, &Settings::default(), &mut |_| {}).unwrap();
-        assert!(a.converged() && b.converged(), "{name}: {} / {}", a.outcome.reason, b.outcome.reason);
-        let rel = (a.outcome.objective - b.outcome.objective).abs() / a.outcome.objective;
-        let dx = a.ctrl.iter().zip(&b.ctrl).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
-        println!(
-            "{name}: objectives {} and {}, control points within {dx:.2e} rad, {} and {} iterations",
-            a.outcome.objective, b.outcome.objective, a.outcome.iterations, b.outcome.iterations
-        );
-        assert!(rel < 1e-6, "{name}: objectives differ: {} vs {}", a.outcome.objective, b.outcome.objective);
-        assert!(dx < 1e-4, "{name}: control points differ by {dx} rad");
+        for other in [SolverKind::Newton, SolverKind::AuglagBfgs] {
+            let b = plan::plan(spec, other, &Settings::default(), &mut |_| {}).unwrap();
+            assert!(a.converged() && b.converged(), "{name}: {} / {other:?} {}", a.outcome.reason, b.outcome.reason);
+            let rel = (a.outcome.objective - b.outcome.objective).abs() / a.outcome.objective;
+            let dx = a.ctrl.iter().zip(&b.ctrl).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
+            println!(
+                "{name}, {other:?}: objectives {} and {}, control points within {dx:.2e} rad, {} and {} iterations",
+                a.outcome.objective, b.outcome.objective, a.outcome.iterations, b.outcome.iterations
+            );
+            assert!(rel < 1e-6, "{name}, {other:?}: objectives differ: {} vs {}", a.outcome.objective, b.outcome.objective);
+            assert!(dx < 1e-4, "{name}, {other:?}: control points differ by {dx} rad");
+        }
     }
     // The torque limit binds in the fast swing, so the constraint machinery is exercised.
     let a = plan::plan(&fast, SolverKind::Structured, &Settings::default(), &mut |_| {}).unwrap();

@@ -156,3 +156,64 @@ fn inverse_inertia_objective_has_the_exact_gradient() {
         }
     }
 }
+
+/// The exact second-order term `Σ wⱼ∇²cⱼ` the Newton solver adds to `JᵀJ` (node-wise differences of exact
+/// first derivatives, completed by structure) against central differences of the weighted gradient
+/// `J(x)ᵀw` over every unknown — with random weights on every kind of row, so contacts, loads, balance and
+/// limits all take part. The term must also be symmetric, and the band sized for `JᵀJ` must hold it.
+#[test]
+fn second_order_term_matches_differences_of_the_gradient() {
+    use mintorque::solve::SymmetricMatrix;
+    for (seed, n, zev) in [(11u64, 1usize, true), (12, 4, false), (13, 9, true)] {
+        let spec = random_spec(seed, n, zev);
+        let mut problem = Transcription::new(&spec).unwrap();
+        let dims = problem.dims();
+        let mut eval = Evaluation::new(dims, &problem.jacobian_patterns()).unwrap();
+        let mut rng = Rng(seed ^ 31);
+        let x: Vec<f64> = rng.vec(dims.n, -0.8, 0.8);
+        let weights = [rng.vec(dims.n_res, -2.0, 2.0), rng.vec(dims.n_eq, -2.0, 2.0), rng.vec(dims.n_ineq, 0.0, 2.0)];
+        let mut weighted_gradient = |x: &[f64]| {
+            problem.evaluate(x, true, &mut eval).unwrap();
+            let mut g = vec![0.0; dims.n];
+            eval.jr.tr_mul_vec(&weights[0], &mut g);
+            eval.jh.tr_mul_vec_add(1.0, &weights[1], &mut g);
+            eval.jg.tr_mul_vec_add(1.0, &weights[2], &mut g);
+            g
+        };
+        let h = 1e-5;
+        let mut fd = nalgebra::DMatrix::<f64>::zeros(dims.n, dims.n);
+        for col in 0..dims.n {
+            let (mut xp, mut xm) = (x.clone(), x.clone());
+            xp[col] += h;
+            xm[col] -= h;
+            let (gp, gm) = (weighted_gradient(&xp), weighted_gradient(&xm));
+            for row in 0..dims.n {
+                fd[(row, col)] = (gp[row] - gm[row]) / (2.0 * h);
+            }
+        }
+        let mut target = SymmetricMatrix::dense(dims.n);
+        let w = [&weights[0][..], &weights[1][..], &weights[2][..]];
+        assert!(problem.add_second_order(&x, w, &mut target), "the transcription provides the term");
+        let term = target.to_dense();
+        let scale = fd.amax().max(1.0);
+        let mut worst = 0.0f64;
+        for row in 0..dims.n {
+            for col in 0..=row {
+                let err = (term[(row, col)] - fd[(row, col)]).abs() / scale;
+                worst = worst.max(err);
+                assert!(
+                    err < 1e-5,
+                    "seed {seed}, {n} joints: S[{row}][{col}] = {} exact, {} by differences",
+                    term[(row, col)],
+                    fd[(row, col)]
+                );
+            }
+        }
+        // The band of JᵀJ holds the term (what the banded solver needs).
+        let bandwidth = [&eval.jr, &eval.jh, &eval.jg].iter().map(|j| j.gram_bandwidth()).max().unwrap();
+        let mut banded = SymmetricMatrix::banded(dims.n, bandwidth);
+        assert!(problem.add_second_order(&x, w, &mut banded));
+        assert!((banded.to_dense() - term).amax() < 1e-12 * scale);
+        println!("seed {seed}: {} unknowns, worst relative error {worst:.2e} (scale {scale:.2e})", dims.n);
+    }
+}

@@ -108,6 +108,7 @@ enum Command {
 #[derive(Clone, Copy, clap::ValueEnum)]
 enum SolverArg {
     Structured,
+    Newton,
     AuglagBfgs,
 }
 
@@ -137,6 +138,7 @@ fn run_plan(
     if let Some(s) = solver {
         task.solver = match s {
             SolverArg::Structured => SolverKind::Structured,
+            SolverArg::Newton => SolverKind::Newton,
             SolverArg::AuglagBfgs => SolverKind::AuglagBfgs,
         };
     }

@@ -216,6 +216,20 @@ impl<'a> AugmentedLagrangian<'a> {
         self.eval.jh.tr_mul_vec_add(1.0, &self.coef_h, out);
     }
 
+    /// The weights of the rows in `∇L_A = Jᵣᵀr + J_hᵀw_h + J_gᵀw_g`: `[r, w_h, w_g]`, as left by the last call
+    /// of [`AugmentedLagrangian::gradient`].
+    pub(crate) fn gradient_weights(&self) -> [&[f64]; 3] {
+        [&self.eval.r, &self.coef_h, &self.coef_g]
+    }
+
+    /// Asks the problem for the second-order term `Σ wⱼ∇²cⱼ` at `x` with the weights of
+    /// [`AugmentedLagrangian::gradient_weights`] (call [`AugmentedLagrangian::gradient`] at `x` first), added
+    /// into `target`; `false` if the problem does not provide it.
+    pub(crate) fn add_second_order(&mut self, x: &[f64], target: &mut SymmetricMatrix) -> bool {
+        let weights = [&self.eval.r[..], &self.coef_h[..], &self.coef_g[..]];
+        self.problem.add_second_order(x, weights, target)
+    }
+
     /// The Gauss–Newton model of `∇²L_A`: `JᵣᵀJᵣ + 2w_p Σ_k ∇ĥ_k∇ĥ_kᵀ + 2w_p Σ_{i active} ∇ĝᵢ∇ĝᵢᵀ`, the exact
     /// `JᵀJ` of the sum-of-squares form of `L_A` (see [`super::least_squares`]).
     pub(crate) fn gauss_newton(&mut self, target: &mut SymmetricMatrix) -> Result<(), PatternError> {

@@ -37,6 +37,7 @@
 use super::auglag::{solve_with, AugmentedLagrangian, InnerReport, InnerSolver, InnerStatus};
 use super::linalg::{Cholesky, SymmetricMatrix};
 use super::line_search::{norm_inf, EvalError, Iterate};
+use super::partitioned::SecondOrderTerm;
 use super::problem::{Evaluation, Problem};
 use super::solver::{Outcome, Progress, Settings, Solver};
 
@@ -44,6 +45,9 @@ use super::solver::{Outcome, Progress, Settings, Solver};
 const INITIAL_DAMPING: f64 = 1e-3;
 const MIN_DAMPING: f64 = 1e-15;
 const MAX_DAMPING: f64 = 1e20;
+/// Iterations between refreshes of the secant second-order term by differences (when the problem does
+/// not provide the term itself); measured best of 1, 4, 12 on the bundled examples (docs/performance.md).
+const SECANT_REFRESH: usize = 4;
 /// Relative size below which a change of `L_A` is treated as rounding noise.
 const NOISE: f64 = 1e-10;
 
@@ -54,7 +58,20 @@ pub struct AugLagLevenbergMarquardt;
 
 impl Solver for AugLagLevenbergMarquardt {
     fn solve(&self, problem: &mut dyn Problem, x0: &[f64], settings: &Settings, observer: &mut dyn FnMut(&Progress)) -> Outcome {
-        solve_with(problem, x0, settings, observer, LevenbergMarquardt::new)
+        solve_with(problem, x0, settings, observer, |eval| LevenbergMarquardt::new(eval, false))
+    }
+}
+
+/// The same method of multipliers and trust region as [`AugLagLevenbergMarquardt`] on the model
+/// `JᵀJ + Σ wⱼ∇²cⱼ`: Gauss–Newton plus the second-order term of the Lagrangian, exact when the problem
+/// provides it ([`Problem::add_second_order`]), otherwise the partitioned secant approximation of
+/// [`super::partitioned`]. Both keep the band.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct AugLagNewton;
+
+impl Solver for AugLagNewton {
+    fn solve(&self, problem: &mut dyn Problem, x0: &[f64], settings: &Settings, observer: &mut dyn FnMut(&Progress)) -> Outcome {
+        solve_with(problem, x0, settings, observer, |eval| LevenbergMarquardt::new(eval, true))
     }
 }
 
@@ -74,6 +91,13 @@ struct LevenbergMarquardt {
     /// Marquardt parameter `ν` and its growth `β`.
     damping: f64,
     growth: f64,
+    /// The second-order term of the model, when used.
+    second_order: Option<SecondOrderTerm>,
+    /// Whether the problem provides the second-order term itself (`None` until asked).
+    exact: Option<bool>,
+    /// Recompute the secant approximation by differences every this many iterations (0: never).
+    refresh_every: usize,
+    since_refresh: usize,
 }
 
 enum Step {
@@ -83,7 +107,7 @@ enum Step {
 }
 
 impl LevenbergMarquardt {
-    fn new(eval: &Evaluation) -> Self {
+    fn new(eval: &Evaluation, second_order: bool) -> Self {
         let n = eval.jr.ncols();
         let bandwidth = [&eval.jr, &eval.jh, &eval.jg].iter().map(|j| j.gram_bandwidth()).max().unwrap_or(0);
         let gram = SymmetricMatrix::for_bandwidth(n, bandwidth);
@@ -98,15 +122,39 @@ impl LevenbergMarquardt {
             x_trial: vec![0.0; n],
             damping: INITIAL_DAMPING,
             growth: 2.0,
+            second_order: second_order.then(|| SecondOrderTerm::new(eval)),
+            exact: None,
+            refresh_every: SECANT_REFRESH,
+            since_refresh: 0,
         }
     }
 
-    /// `JᵀJ` at the last evaluated point into `gram`, and `D` updated.
-    fn assemble(&mut self, al: &mut AugmentedLagrangian<'_>) -> Result<(), String> {
+    /// The model at `x`, the last evaluated point, into `gram`: `JᵀJ`, `D` updated from it, then the
+    /// second-order term — the problem's own if it provides one, else the partitioned secant
+    /// approximation (whose pair starts here), refreshed by differences every `refresh_every` iterations.
+    fn assemble(&mut self, al: &mut AugmentedLagrangian<'_>, x: &[f64]) -> Result<(), String> {
         al.gauss_newton(&mut self.gram).map_err(|e| format!("internal: Gauss–Newton assembly: {e}"))?;
         for (j, d) in self.scaling.iter_mut().enumerate() {
             *d = d.max(self.gram.diagonal(j));
         }
+        let Some(term) = &mut self.second_order else {
+            return Ok(());
+        };
+        al.gradient(&mut self.gradient_trial); // the row weights at x, which gauss_newton overwrote
+        if self.exact != Some(false) {
+            let provided = al.add_second_order(x, &mut self.gram);
+            self.exact = Some(provided);
+            if provided {
+                return Ok(());
+            }
+        }
+        term.remember(x, &al.eval, al.gradient_weights());
+        if self.refresh_every > 0 && self.since_refresh.is_multiple_of(self.refresh_every) {
+            // A failed evaluation near x keeps the secant approximation.
+            let _ = term.refresh(al);
+        }
+        self.since_refresh += 1;
+        term.add_to(&mut self.gram);
         Ok(())
     }
 
@@ -181,6 +229,9 @@ impl LevenbergMarquardt {
             }
             let gain = actual / predicted;
             if gain > 0.0 && trial.is_finite() {
+                if let (Some(term), Some(false)) = (&mut self.second_order, self.exact) {
+                    term.update(&self.x_trial, &al.eval, al.gradient_weights());
+                }
                 std::mem::swap(&mut self.gradient, &mut self.gradient_trial);
                 x.copy_from_slice(&self.x_trial);
                 self.damping = (self.damping * (1.0 / 3.0f64).max(1.0 - (2.0 * gain - 1.0).powi(3))).max(MIN_DAMPING);
@@ -227,7 +278,7 @@ impl InnerSolver for LevenbergMarquardt {
             if iterations >= max_iterations {
                 return report(InnerStatus::MaxIterations, iterations);
             }
-            if let Err(m) = self.assemble(al) {
+            if let Err(m) = self.assemble(al, x) {
                 return report(InnerStatus::EvaluationError(m), iterations);
             }
             match self.step(al, x, value) {

@@ -17,6 +17,7 @@ pub mod bfgs;
 pub mod least_squares;
 pub mod linalg;
 pub mod line_search;
+mod partitioned;
 pub mod problem;
 pub mod solver;
 pub mod sparse;
@@ -26,7 +27,7 @@ mod tests;
 
 pub use auglag::AugLagBfgs;
 pub use bfgs::{Bfgs, BfgsReport, BfgsSettings, BfgsStatus};
-pub use least_squares::AugLagLevenbergMarquardt;
+pub use least_squares::{AugLagLevenbergMarquardt, AugLagNewton};
 pub use linalg::{Cholesky, NotPositiveDefinite, SymmetricMatrix};
 pub use line_search::{EvalError, Iterate, LineSearch, Objective};
 pub use problem::{ConstraintKind, Dims, Evaluation, Patterns, Problem, ProblemError, Scales};

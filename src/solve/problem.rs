@@ -10,6 +10,7 @@
 //! solver can use the Gauss–Newton structure `∇²F ≈ JᵣᵀJᵣ`. All Jacobians are sparse with a pattern fixed
 //! for the whole solve.
 
+use super::linalg::SymmetricMatrix;
 use super::sparse::{PatternError, SparseMatrix};
 
 /// Sizes of a problem.
@@ -153,6 +154,15 @@ pub trait Problem {
     /// with [`StopReason::EvaluationError`](super::StopReason::EvaluationError); non-finite values are caught
     /// by the solver.
     fn evaluate(&mut self, x: &[f64], want_jac: bool, out: &mut Evaluation) -> Result<(), String>;
+
+    /// Adds the second-order term of the Lagrangian's Hessian, `Σⱼ wⱼ ∇²cⱼ` over every row `cⱼ` of `r`, `h`
+    /// and `g` with weights `weights = [w_r, w_h, w_g]`, at `x`, into the lower triangle of `target` (sized
+    /// for `JᵀJ`), and returns `true`; or returns `false` without touching `target` when the problem does
+    /// not provide it (the default: solvers then approximate it). Must not change the last evaluation.
+    fn add_second_order(&mut self, x: &[f64], weights: [&[f64]; 3], target: &mut SymmetricMatrix) -> bool {
+        let _ = (x, weights, target);
+        false
+    }
 
     /// Per-constraint scales for the violation tolerance (default: all ones).
     fn scales(&self) -> Scales {

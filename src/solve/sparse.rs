@@ -81,6 +81,11 @@ impl SparseMatrix {
         &self.col_idx[self.row_ptr[i]..self.row_ptr[i + 1]]
     }
 
+    /// Where row `i`'s entries sit in [`SparseMatrix::values`].
+    pub fn row_range(&self, i: usize) -> std::ops::Range<usize> {
+        self.row_ptr[i]..self.row_ptr[i + 1]
+    }
+
     /// Values of row `i`, parallel to [`SparseMatrix::row_cols`].
     pub fn row_values(&self, i: usize) -> &[f64] {
         &self.values[self.row_ptr[i]..self.row_ptr[i + 1]]

@@ -30,7 +30,7 @@ pub enum IneqRow {
 /// The coefficients `c` of a balance row `c · W ≤ 0` in the root reaction wrench `W = [n; f]` (about the
 /// world origin), for the centre of pressure on the plane `z = z₀`: with `n' = n − z₀ ẑ × f`, the centre
 /// of pressure is `(−n'_y/f_z, n'_x/f_z)`; multiplying through by `f_z ≥ 0` keeps the rows linear.
-fn balance_coefficients(row: usize, b: &crate::plan::spec::Balance) -> [f64; 6] {
+pub(super) fn balance_coefficients(row: usize, b: &crate::plan::spec::Balance) -> [f64; 6] {
     let z0 = b.ground_z;
     // [n_x, n_y, n_z, f_x, f_y, f_z]
     match row {
@@ -42,7 +42,7 @@ fn balance_coefficients(row: usize, b: &crate::plan::spec::Balance) -> [f64; 6] 
     }
 }
 
-fn dot6(c: &[f64; 6], f: &Force) -> f64 {
+pub(super) fn dot6(c: &[f64; 6], f: &Force) -> f64 {
     c[0] * f.n.x + c[1] * f.n.y + c[2] * f.n.z + c[3] * f.f.x + c[4] * f.f.y + c[5] * f.f.z
 }
 

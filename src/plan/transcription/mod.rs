@@ -17,12 +17,13 @@
 //! only the four non-zero basis functions at each node.
 
 mod constraints;
+mod hessian;
 mod objective;
 
 use super::spec::{Objective, Spec};
 use crate::dynamics::point_force::{add_generalized_force, generalized_force_derivative, path_dofs, point_jacobian};
 use crate::dynamics::{kinematics, rnea::rnea, rnea_derivatives::rnea_derivatives, Data};
-use crate::solve::{ConstraintKind, Dims, Evaluation, Patterns, Problem, Scales};
+use crate::solve::{ConstraintKind, Dims, Evaluation, Patterns, Problem, Scales, SymmetricMatrix};
 use crate::spatial::{Force, Vec3};
 use crate::trajectory::bspline::{BasisAt, CubicBSpline, Nodes};
 pub use constraints::IneqRow;
@@ -161,6 +162,7 @@ pub struct Transcription<'s> {
     ctrl: Vec<f64>,
     lam_ctrl: Vec<f64>,
     work: NodeWork,
+    hess: hessian::HessianWork,
 }
 
 /// Per-node values and derivatives with respect to the node's `q`, `q̇`, `q̈` and `λ̃`.
@@ -342,6 +344,7 @@ impl<'s> Transcription<'s> {
             effort,
             total_weight,
             work,
+            hess: hessian::HessianWork::new(nv, n_lambda),
         }
     }
 
@@ -368,8 +371,12 @@ impl<'s> Transcription<'s> {
 
     /// Evaluates everything at one node into `self.work` (derivatives when `jac`).
     fn eval_node(&mut self, k: usize, jac: bool) {
-        let spec = self.spec;
-        let model = &spec.model;
+        self.node_state(k);
+        self.eval_state(jac);
+    }
+
+    /// `q, q̇, q̈, λ` at node `k` into `self.work` (eq. 30–32).
+    fn node_state(&mut self, k: usize) {
         let nv = self.layout.nv;
         let nl = self.layout.n_lambda;
         let basis = self.nodes.basis[k];
@@ -378,6 +385,16 @@ impl<'s> Transcription<'s> {
         for m in 0..nl {
             w.lambda[m] = (0..4).map(|a| basis.b[a] * self.lam_ctrl[(basis.first + a) * nl + m]).sum();
         }
+    }
+
+    /// The dynamics at the state in `self.work`: active torques, root wrench, contact points, the
+    /// objective's residual, and their derivatives when `jac`.
+    fn eval_state(&mut self, jac: bool) {
+        let spec = self.spec;
+        let model = &spec.model;
+        let nv = self.layout.nv;
+        let nl = self.layout.n_lambda;
+        let w = &mut self.work;
         let data = &mut self.data;
         if jac {
             rnea_derivatives(model, data, &w.q, &w.qd, &w.qdd, &spec.gravity, None);
@@ -584,6 +601,14 @@ impl Problem for Transcription<'_> {
             self.inequality_rows(k, want_jac, out);
         }
         Ok(())
+    }
+
+    fn add_second_order(&mut self, x: &[f64], weights: [&[f64]; 3], target: &mut SymmetricMatrix) -> bool {
+        if self.spec.objective != Objective::Torque {
+            return false;
+        }
+        self.add_second_order_term(x, weights, target);
+        true
     }
 
     fn scales(&self) -> Scales {

@@ -1,0 +1,282 @@
+//! The second-order term of the Lagrangian's Hessian, `Σⱼ wⱼ ∇²cⱼ`, node by node, for the structured
+//! solver's model `JᵀJ + Σ wⱼ∇²cⱼ` (see `solve::least_squares`).
+//!
+//! At a node the rows that curve are functions of the active torque `τ(z, λ)` and the root wrench
+//! `W(z, λ)`, `z = (q, q̇, q̈)`: the residuals `√wₖ √W_l τ_l`, the torque limits `±τᵢ − τ_max` and the
+//! balance rows `c·W`. With the rows' weights they add up to one scalar per node,
+//!
+//! ```text
+//!   φₖ(z, λ) = Σ_l ω_l τ_l(z, λ) + ω_W · W(z, λ),      ∇²_x(Σ wⱼcⱼ) = Σₖ Bₖᵀ ∇²φₖ Bₖ      (eq. 33)
+//! ```
+//!
+//! `Bₖ` the chain rule of eq. 33 (the four basis functions and their derivatives). `∇φₖ` is exact (the
+//! engine's `∂τ/∂q`, `∂τ/∂q̇`, `H`), and `∇²φₖ` is its forward difference along each `qᵢ` and `q̇ᵢ` — `2·nv`
+//! derivative passes at one node, not a whole evaluation — completed by structure: `τ` is linear in `q̈`
+//! and in `λ`, and `∂τ/∂q̈ = H(q)` does not depend on `q̇`, so `∂²φ/∂q̈² = ∂²φ/∂q̈∂q̇ = ∂²φ/∂λ² = ∂²φ/∂λ∂q̇ = 0`
+//! and the remaining blocks follow by symmetry from the `q` and `q̇` columns. The loop closures
+//! `Φ = Eᵀ(p(q) − target)` at the contact nodes add `Σ w_h ∇²Φ`, the difference of the point Jacobians
+//! along each `qᵢ`. Position limits and contact-force signs are linear and add nothing.
+
+use super::constraints::{balance_coefficients, dot6};
+use super::{IneqRow, Transcription};
+use crate::dynamics::{kinematics, point_force::point_jacobian};
+use crate::solve::SymmetricMatrix;
+
+/// Relative step of the forward differences: `ε = STEP·(1 + |zᵢ|)`, about √(machine ε).
+const STEP: f64 = 1e-7;
+
+/// One of a node's unknowns: its column in `x`, up to three `(index in z, ∂z/∂x)` pairs, and how many
+/// of them count.
+type LocalUnknown = (usize, [(usize, f64); 3], usize);
+
+/// Scratch for the second-order term, allocated once per transcription.
+#[derive(Clone, Debug)]
+pub(super) struct HessianWork {
+    /// The node state `(q, q̇, q̈, λ)` and `∇φ` there; a perturbed gradient.
+    z: Vec<f64>,
+    grad: Vec<f64>,
+    grad_perturbed: Vec<f64>,
+    /// `∇²φ`, `d × d` row-major, `d = 3nv + n_λ`.
+    s: Vec<f64>,
+    /// Per-node weights: `ω` (nv) and `ω_W`.
+    omega: Vec<f64>,
+    omega_w: [f64; 6],
+    /// The node's unknowns: global column, and up to three (z index, coefficient) pairs.
+    local: Vec<LocalUnknown>,
+}
+
+impl HessianWork {
+    pub(super) fn new(nv: usize, nl: usize) -> Self {
+        let d = 3 * nv + nl;
+        HessianWork {
+            z: vec![0.0; d],
+            grad: vec![0.0; d],
+            grad_perturbed: vec![0.0; d],
+            s: vec![0.0; d * d],
+            omega: vec![0.0; nv],
+            omega_w: [0.0; 6],
+            local: Vec::with_capacity(4 * (nv + nl)),
+        }
+    }
+}
+
+impl Transcription<'_> {
+    /// `target += Σⱼ wⱼ ∇²cⱼ` at `x` (lower triangle), `weights = [w_r, w_h, w_g]` the rows' weights.
+    /// Only for the `½∫τᵀWτ` objective (the caller checks).
+    pub(super) fn add_second_order_term(&mut self, x: &[f64], weights: [&[f64]; 3], target: &mut SymmetricMatrix) {
+        self.set_x(x);
+        for k in 0..self.n_nodes() {
+            if self.node_weights(k, weights[0], weights[2]) {
+                self.node_hessian(k);
+                let basis = self.nodes.basis[k];
+                self.add_mapped(&basis, 3, target);
+            }
+        }
+        if !self.spec.contacts.is_empty() {
+            for k in 0..self.contact_nodes.t.len() {
+                let rows = &weights[1][k * self.n_eq_node..(k + 1) * self.n_eq_node];
+                if rows.iter().any(|w| *w != 0.0) {
+                    self.closure_hessian(k, rows);
+                    let basis = self.contact_nodes.basis[k];
+                    self.add_mapped(&basis, 1, target);
+                }
+            }
+        }
+    }
+
+    /// `ω` and `ω_W` of node `k` from the row weights; `false` if all vanish.
+    fn node_weights(&mut self, k: usize, w_r: &[f64], w_g: &[f64]) -> bool {
+        let nv = self.layout.nv;
+        let sw = self.nodes.w[k].sqrt();
+        let h = &mut self.hess;
+        for l in 0..nv {
+            h.omega[l] = w_r[k * nv + l] * sw * self.sqrt_weights[l];
+        }
+        h.omega_w = [0.0; 6];
+        let per = self.ineq_rows.len();
+        for (r, row) in self.ineq_rows.iter().enumerate() {
+            let w = w_g[k * per + r];
+            match *row {
+                IneqRow::UpperTorque(i) => h.omega[i] += w,
+                IneqRow::LowerTorque(i) => h.omega[i] -= w,
+                IneqRow::Balance(b) if w != 0.0 => {
+                    let c = balance_coefficients(b, self.spec.balance.as_ref().expect("balance rows need a balance"));
+                    h.omega_w.iter_mut().zip(c).for_each(|(o, c)| *o += w * c);
+                }
+                _ => {}
+            }
+        }
+        h.omega.iter().chain(&h.omega_w).any(|v| *v != 0.0)
+    }
+
+    /// `∇φ` at the state in `self.work` (after `eval_state(true)`) into `out`: `[∂/∂q, ∂/∂q̇, ∂/∂q̈, ∂/∂λ̃]`.
+    fn node_gradient(&self, out: &mut [f64]) {
+        let (nv, nl) = (self.layout.nv, self.layout.n_lambda);
+        let (w, h) = (&self.work, &self.hess);
+        out.fill(0.0);
+        for (l, om) in h.omega.iter().enumerate().filter(|(_, om)| **om != 0.0) {
+            for c in 0..nv {
+                out[c] += om * w.dq[l * nv + c];
+                out[nv + c] += om * w.dv[l * nv + c];
+                out[2 * nv + c] += om * w.da[l * nv + c];
+            }
+            for m in 0..nl {
+                out[3 * nv + m] += om * w.dl[l * nl + m];
+            }
+        }
+        if h.omega_w.iter().any(|v| *v != 0.0) {
+            for c in 0..nv {
+                out[c] += dot6(&h.omega_w, &w.w_dq[c]);
+                out[nv + c] += dot6(&h.omega_w, &w.w_dv[c]);
+                out[2 * nv + c] += dot6(&h.omega_w, &w.w_da[c]);
+            }
+            for m in 0..nl {
+                out[3 * nv + m] += dot6(&h.omega_w, &w.w_dl[m]);
+            }
+        }
+    }
+
+    /// `∇²φₖ` into `hess.s`: forward differences of `∇φ` along `q` and `q̇`, the rest by structure.
+    fn node_hessian(&mut self, k: usize) {
+        let (nv, nl) = (self.layout.nv, self.layout.n_lambda);
+        let d = 3 * nv + nl;
+        self.node_state(k);
+        self.save_state();
+        self.eval_state(true);
+        let mut grad = std::mem::take(&mut self.hess.grad);
+        let mut perturbed = std::mem::take(&mut self.hess.grad_perturbed);
+        self.node_gradient(&mut grad);
+        self.hess.s.fill(0.0);
+        for j in 0..2 * nv {
+            self.restore_state();
+            let epsilon = self.perturb(j);
+            self.eval_state(true);
+            self.node_gradient(&mut perturbed);
+            // Column j (a q or q̇ column), and row j by symmetry for the q̈ and λ columns.
+            for i in 0..d {
+                let v = (perturbed[i] - grad[i]) / epsilon;
+                if i < 2 * nv {
+                    self.hess.s[i * d + j] += 0.5 * v; // the q/q̇ block is symmetrised
+                    self.hess.s[j * d + i] += 0.5 * v;
+                } else {
+                    self.hess.s[i * d + j] = v;
+                    self.hess.s[j * d + i] = v;
+                }
+            }
+        }
+        self.restore_state();
+        self.hess.grad = grad;
+        self.hess.grad_perturbed = perturbed;
+    }
+
+    fn save_state(&mut self) {
+        let (nv, nl) = (self.layout.nv, self.layout.n_lambda);
+        let (w, z) = (&self.work, &mut self.hess.z);
+        z[..nv].copy_from_slice(&w.q);
+        z[nv..2 * nv].copy_from_slice(&w.qd);
+        z[2 * nv..3 * nv].copy_from_slice(&w.qdd);
+        z[3 * nv..3 * nv + nl].copy_from_slice(&w.lambda);
+    }
+
+    fn restore_state(&mut self) {
+        let (nv, nl) = (self.layout.nv, self.layout.n_lambda);
+        let (w, z) = (&mut self.work, &self.hess.z);
+        w.q.copy_from_slice(&z[..nv]);
+        w.qd.copy_from_slice(&z[nv..2 * nv]);
+        w.qdd.copy_from_slice(&z[2 * nv..3 * nv]);
+        w.lambda.copy_from_slice(&z[3 * nv..3 * nv + nl]);
+    }
+
+    /// Moves `qⱼ` (j < nv) or `q̇ⱼ₋ₙᵥ` of the state by `ε` and returns the `ε` actually taken.
+    fn perturb(&mut self, j: usize) -> f64 {
+        let nv = self.layout.nv;
+        let value = if j < nv { &mut self.work.q[j] } else { &mut self.work.qd[j - nv] };
+        let before = *value;
+        *value = before + STEP * (1.0 + before.abs());
+        *value - before
+    }
+
+    /// `Σ w_h ∇²Φ` of contact node `k` into the `q` block of `hess.s` (dimension `d` as for the nodes).
+    fn closure_hessian(&mut self, k: usize, weights: &[f64]) {
+        let nv = self.layout.nv;
+        let d = 3 * nv + self.layout.n_lambda;
+        let basis = self.contact_nodes.basis[k];
+        {
+            let w = &mut self.work;
+            basis.eval(&self.ctrl, nv, &mut w.q, &mut w.qd, &mut w.qdd);
+        }
+        self.hess.z[..nv].copy_from_slice(&self.work.q);
+        self.hess.s.fill(0.0);
+        let mut grad = std::mem::take(&mut self.hess.grad);
+        let mut perturbed = std::mem::take(&mut self.hess.grad_perturbed);
+        self.closure_gradient(weights, &mut grad);
+        for j in 0..nv {
+            self.work.q.copy_from_slice(&self.hess.z[..nv]);
+            let epsilon = self.perturb(j);
+            self.closure_gradient(weights, &mut perturbed);
+            for i in 0..nv {
+                let v = 0.5 * (perturbed[i] - grad[i]) / epsilon;
+                self.hess.s[i * d + j] += v;
+                self.hess.s[j * d + i] += v;
+            }
+        }
+        self.work.q.copy_from_slice(&self.hess.z[..nv]);
+        self.hess.grad = grad;
+        self.hess.grad_perturbed = perturbed;
+    }
+
+    /// `∂/∂q Σ w Φ` at `work.q` into `out[..nv]`.
+    fn closure_gradient(&mut self, weights: &[f64], out: &mut [f64]) {
+        let model = &self.spec.model;
+        out.fill(0.0);
+        kinematics::placements(model, &mut self.data, &self.work.q);
+        for (c, contact) in self.spec.contacts.iter().enumerate() {
+            let info = &self.contacts[c];
+            let p = kinematics::frame_placement(model, &self.data, contact.frame).translation;
+            point_jacobian(&self.data, &info.path, &p, &mut self.work.jac[c]);
+            for (m, e) in info.directions.iter().enumerate() {
+                let w = weights[info.offset + m];
+                for (col, &dof) in info.path.iter().enumerate() {
+                    out[dof] += w * e.dot(&self.work.jac[c][col]);
+                }
+            }
+        }
+    }
+
+    /// `target += Bᵀ S B` for the node with `basis`, `S = hess.s`; `blocks` = how many of `q, q̇, q̈` the
+    /// rows depend on (3 at the quadrature nodes, 1 for the closures, which have no `λ` either).
+    fn add_mapped(&mut self, basis: &crate::trajectory::bspline::BasisAt, blocks: usize, target: &mut SymmetricMatrix) {
+        let (nv, nl) = (self.layout.nv, self.layout.n_lambda);
+        let d = 3 * nv + nl;
+        let h = &mut self.hess;
+        h.local.clear();
+        for a in 0..4 {
+            let j = basis.first + a;
+            for i in 0..nv {
+                if let Some(col) = self.layout.joint_var(j, i) {
+                    let coef = [(i, basis.b[a]), (nv + i, basis.db[a]), (2 * nv + i, basis.ddb[a])];
+                    h.local.push((col, coef, blocks));
+                }
+            }
+            if blocks == 3 {
+                for m in 0..nl {
+                    let coef = [(3 * nv + m, basis.b[a] * self.layout.lambda_scale), (0, 0.0), (0, 0.0)];
+                    h.local.push((self.layout.lambda_var(j, m), coef, 1));
+                }
+            }
+        }
+        for (u, (col_u, coef_u, nu)) in h.local.iter().enumerate() {
+            for (col_v, coef_v, nvv) in &h.local[..=u] {
+                let mut value = 0.0;
+                for (zi, ci) in &coef_u[..*nu] {
+                    for (zj, cj) in &coef_v[..*nvv] {
+                        value += ci * cj * h.s[zi * d + zj];
+                    }
+                }
+                if value != 0.0 {
+                    target.add(*col_u, *col_v, value);
+                }
+            }
+        }
+    }
+}
