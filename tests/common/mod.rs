@@ -1,17 +1,21 @@
-//! Shared helpers for the integration tests: the reference data of `../shared/reference/` and random trees.
+//! Shared helpers for the integration tests: the reference data of `tests/data/reference/` and random trees.
 #![allow(dead_code)]
 
 use std::path::PathBuf;
 
-/// `../shared/reference` beside the project's checkout. Tests fail (never skip) when it is missing.
+/// `tests/data/reference` in the repository (Pinocchio's reference data, with its README). Tests fail
+/// (never skip) when it is missing.
 pub fn reference_dir() -> PathBuf {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/reference");
-    assert!(
-        dir.join("README.md").exists(),
-        "reference data not found at {} — clone the project with ../shared beside it",
-        dir.display()
-    );
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/reference");
+    assert!(dir.join("README.md").exists(), "reference data not found at {}", dir.display());
     dir
+}
+
+/// The reference URDFs as the reference data reads them: a `<mimic>` joint (the Panda's second finger) is a
+/// degree of freedom of its own (`tests/data/reference/README.md`).
+pub fn load_reference_urdf(path: &std::path::Path) -> mintorque::Model {
+    use mintorque::model::urdf::{self, Mimic, Options};
+    urdf::load_with(path, Options { mimic: Mimic::Independent }).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// Every `*.json` reference file, sorted.
