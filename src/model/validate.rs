@@ -23,8 +23,10 @@ impl Range {
     pub fn check(&self, v: f64) -> std::result::Result<f64, String> {
         if v.is_finite() && v >= self.min && v <= self.max {
             Ok(v)
+        } else if !v.is_finite() {
+            Err(format!("is not a finite number (must be from {} to {} {}), got {v}", self.min, self.max, self.unit))
         } else {
-            Err(format!("must be a number from {} to {} {}, got {v}", self.min, self.max, self.unit))
+            Err(format!("must be a number from {} to {} {}, got {}", self.min, self.max, self.unit, short(v)))
         }
     }
 
@@ -39,6 +41,15 @@ impl Range {
     /// Every component within the range.
     pub fn check_all(&self, v: &[f64]) -> std::result::Result<(), String> {
         v.iter().try_for_each(|x| self.check(*x).map(|_| ()))
+    }
+}
+
+/// `v` as people write it: 1e308, not three hundred digits.
+fn short(v: f64) -> String {
+    if v != 0.0 && !(1e-4..1e6).contains(&v.abs()) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
     }
 }
 
@@ -58,7 +69,7 @@ pub mod ranges {
     /// A joint value or limit in SI: rad for revolutes, m for prismatic joints.
     pub const JOINT: Range = Range { min: -1e3, max: 1e3, unit: "rad (m for prismatic)" };
     /// A joint value or limit in a file's degrees (a hundred turns).
-    pub const DEGREES: Range = Range { min: -36000.0, max: 36000.0, unit: "degrees (m for prismatic)" };
+    pub const DEGREES: Range = Range { min: -36000.0, max: 36000.0, unit: "degrees" };
     /// An effort limit or a strength (N·m, N for prismatic).
     pub const EFFORT: Range = Range { min: 0.0, max: 1e7, unit: "N·m (N for prismatic)" };
     /// A passive spring's stiffness (N·m/rad, N/m for prismatic).

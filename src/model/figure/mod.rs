@@ -301,7 +301,7 @@ impl<'d, 'a> Builder<'d, 'a> {
                 ));
             }
         };
-        let field = if mass < 0.0 || !mass.is_finite() { "mass" } else { field };
+        let field = if validate::ranges::MASS.check(mass).is_err() { "mass" } else { field };
         validate::check_inertia(&inertia).map_err(|m| self.err(&format!("{path}.{field}"), m))?;
         let shapes = match &raw.shapes {
             Some(list) => {

@@ -46,7 +46,7 @@ type At<'a> = dyn Fn(&str, std::result::Result<f64, String>) -> Result<()> + 'a;
 fn positive(range: &Range, v: f64) -> std::result::Result<f64, String> {
     match range.check(v) {
         Ok(v) if v > 0.0 => Ok(v),
-        Ok(_) => Err(format!("must be more than 0 {}, got {v}", range.unit)),
+        Ok(_) => Err(format!("must be a positive number (more than 0, at most {} {}), got {v}", range.max, range.unit)),
         Err(m) => Err(m),
     }
 }

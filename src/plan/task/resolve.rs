@@ -348,7 +348,7 @@ pub(super) fn radian_warnings(file: &TaskFile, model: &Model, origin: &str) -> V
         .into_iter()
         .filter(|(_, p)| looks_like_radians(p))
         .map(|(field, _)| {
-            format!("{origin}: {field}: every angle is within ±π: these are degrees, did you mean radians? (1.57 here is 1.57°, not 90°)")
+            format!("{origin}: {field}: every angle is within ±π: these fields are in degrees — were radians meant? (1.57 here is 1.57°, not 90°)")
         })
         .collect()
 }
