@@ -235,20 +235,7 @@ const URDF: &str = r#"<?xml version="1.0"?>
 </robot>
 "#;
 
-/// A valid two-link figure file; the tests break one thing in it at a time.
-const FIGURE: &str = r#"name = "two"
-
-[root]
-name = "base"
-
-[[body]]
-name = "arm"
-parent = "base"
-mass = 2.0
-com = [0.0, 0.0, -0.5]
-inertia = { ixx = 0.2, iyy = 0.2, izz = 0.01 }
-joint = { name = "hinge", type = "revolute", axis = [0, 1, 0], origin = { xyz = [0, 0, 0] }, lower_deg = -60, upper_deg = 60 }
-"#;
+use common::FIGURE;
 
 fn urdf_error(text: &str) -> String {
     urdf::parse(text, "bad.urdf").expect_err("the URDF should be refused").to_string()

@@ -28,7 +28,8 @@ fn wrong_length_unknown_joint_and_non_finite_values_are_named() {
     let bad = joints(&["shoulder", "wrist"]);
     let e = error_of(&format!("{{\"joints\": [{bad}], \"states\": []}}"), "unknown");
     assert!(e.contains("joints[1].name") && e.contains("\"wrist\""), "{e}");
-    let e = error_of(&format!("{{\"joints\": [{ok}], \"states\": [{{\"q\": [0, 1e999], \"v\": [0, 0], \"a\": [0, 0]}}]}}"), "inf");
+    let e =
+        error_of(&format!("{{\"joints\": [{ok}], \"states\": [{{\"q\": [0, 1e999], \"v\": [0, 0], \"a\": [0, 0]}}]}}"), "inf");
     assert!(e.contains("line 1"), "{e}");
     let e = error_of("{\"joints\": [", "syntax");
     assert!(e.contains("line 1"), "{e}");

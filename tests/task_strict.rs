@@ -3,6 +3,8 @@
 //! it accepts — each an error naming the real file and the field; radians in a human's degrees fields a
 //! warning naming the field. One test per finding of docs/reliability.md.
 
+mod common;
+
 use mintorque::plan::task::Task;
 use std::path::PathBuf;
 
@@ -10,14 +12,7 @@ fn path() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples/strict-task.toml")
 }
 
-const GOOD: &str = r#"
-[model]
-urdf = "../models/double_pendulum.urdf"
-[motion]
-duration = 1.5
-start = { shoulder = 0.0, elbow = 0.0 }
-goal = { shoulder = 90.0, elbow = 0.0 }
-"#;
+use common::TASK as GOOD;
 
 /// A standing human, as the bundled examples plan it.
 const HUMAN: &str = r#"
@@ -126,7 +121,8 @@ fn errors_name_the_real_file() {
     let dir = std::env::temp_dir().join(format!("mintorque-task-strict-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let file = dir.join("my-task.toml");
-    std::fs::write(&file, "[model]\nhuman = \"sagittal\"\nmass = 1e308\n[motion]\nduration = 1\nstart = {}\ngoal = {}\n").unwrap();
+    std::fs::write(&file, "[model]\nhuman = \"sagittal\"\nmass = 1e308\n[motion]\nduration = 1\nstart = {}\ngoal = {}\n")
+        .unwrap();
     let e = Task::load(&file).err().expect("refused").to_string();
     assert!(e.contains("my-task.toml") && e.contains("model.mass"), "{e}");
     assert!(!e.starts_with("task:"), "{e}");

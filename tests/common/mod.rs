@@ -104,3 +104,28 @@ pub fn random_tree(seed: u64, n: usize) -> Model {
     model.validate("random tree").expect("random tree is valid");
     model
 }
+
+/// A valid two-link figure file; the tests break one thing in it at a time.
+pub const FIGURE: &str = r#"name = "two"
+
+[root]
+name = "base"
+
+[[body]]
+name = "arm"
+parent = "base"
+mass = 2.0
+com = [0.0, 0.0, -0.5]
+inertia = { ixx = 0.2, iyy = 0.2, izz = 0.01 }
+joint = { name = "hinge", type = "revolute", axis = [0, 1, 0], origin = { xyz = [0, 0, 0] }, lower_deg = -60, upper_deg = 60 }
+"#;
+
+/// A valid task on the double pendulum; the tests break or extend it.
+pub const TASK: &str = r#"
+[model]
+urdf = "../models/double_pendulum.urdf"
+[motion]
+duration = 1.5
+start = { shoulder = 0.0, elbow = 0.0 }
+goal = { shoulder = 90.0, elbow = 0.0 }
+"#;

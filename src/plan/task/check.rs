@@ -44,11 +44,10 @@ type At<'a> = dyn Fn(&str, std::result::Result<f64, String>) -> Result<()> + 'a;
 
 /// `v` > 0 and within `range`.
 fn positive(range: &Range, v: f64) -> std::result::Result<f64, String> {
-    match range.check(v) {
-        Ok(v) if v > 0.0 => Ok(v),
-        Ok(_) => Err(format!("must be a positive number (more than 0, at most {} {}), got {v}", range.max, range.unit)),
-        Err(m) => Err(m),
+    if v.is_finite() && v <= 0.0 {
+        return Err(format!("must be a positive number (more than 0, at most {} {}), got {v}", range.max, range.unit));
     }
+    range.check(v)
 }
 
 fn motion(file: &TaskFile, origin: &str, at: &At) -> Result<()> {
