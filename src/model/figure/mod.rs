@@ -29,7 +29,7 @@ pub fn load(path: &Path) -> Result<Model> {
 
 /// Parses figure-file text; `origin` names its source (usually the file name) in error messages.
 pub fn parse(text: &str, origin: &str) -> Result<Model> {
-    let doc = Doc::parse(text, origin, "figure", |o, e, m| Error::model(o, e, m))?;
+    let doc = Doc::parse(text, origin, "figure", Error::model)?;
     let raw: RawFigure = doc.read()?;
     Builder::new(&doc, &raw).build()
 }

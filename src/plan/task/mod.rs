@@ -53,7 +53,7 @@ impl Task {
     /// Parses task text; `path` locates the files it names and is quoted in errors.
     pub fn parse(text: &str, path: &Path) -> Result<Task> {
         let origin = path.display().to_string();
-        let doc = Doc::parse(text, &origin, "task", |o, e, m| Error::task(o, e, m))?;
+        let doc = Doc::parse(text, &origin, "task", Error::task)?;
         let file: TaskFile = doc.read()?;
         check::numbers(&file, &origin)?;
         let filmstrip_view =
