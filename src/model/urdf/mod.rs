@@ -398,6 +398,13 @@ impl Cx<'_, '_> {
             }
             axis /= n;
         }
+        let limits = self.limits(node, &what, ty == "continuous")?;
+        let passive = self.passive(node, &what)?;
+        Ok(UrdfJoint { name, line: self.line(node), kind, parent, child, origin, axis, limits, passive })
+    }
+
+    /// `<limit>`: effort and velocity, and the position range unless `continuous`; absent means none.
+    fn limits(&self, node: Node, what: &str, continuous: bool) -> Result<JointLimits> {
         let mut limits = JointLimits::default();
         if let Some(l) = self.child(node, "limit") {
             let e = format!("{what} <limit>");
@@ -407,11 +414,16 @@ impl Cx<'_, '_> {
             };
             limits.effort = ranged("effort", &ranges::EFFORT, f64::INFINITY)?;
             limits.velocity = self.optional_number(l, "velocity", &e, f64::INFINITY)?;
-            if ty != "continuous" {
+            if !continuous {
                 limits.lower = ranged("lower", &ranges::JOINT, f64::NEG_INFINITY)?;
                 limits.upper = ranged("upper", &ranges::JOINT, f64::INFINITY)?;
             }
         }
+        Ok(limits)
+    }
+
+    /// `<dynamics>`: the damper, and our spring.
+    fn passive(&self, node: Node, what: &str) -> Result<Passive> {
         let mut passive = Passive::default();
         if let Some(d) = self.child(node, "dynamics") {
             let e = format!("{what} <dynamics>");
@@ -422,7 +434,7 @@ impl Cx<'_, '_> {
             passive.stiffness = self.optional_number(d, "spring_stiffness", &e, 0.0)?;
             passive.rest = self.optional_number(d, "spring_reference", &e, 0.0)?;
         }
-        Ok(UrdfJoint { name, line: self.line(node), kind, parent, child, origin, axis, limits, passive })
+        Ok(passive)
     }
 }
 
