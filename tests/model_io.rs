@@ -2,21 +2,21 @@
 //! loads as documented, and every kind of bad input is an error naming the file, the element and the
 //! problem (never a panic).
 
+mod common;
+
 use mintorque::dynamics::{crba::crba, kinematics, rnea::rnea, Data};
 use mintorque::model::{figure, load_any, urdf, urdf_export, JointKind};
 use mintorque::Model;
 use std::path::{Path, PathBuf};
 
-const MODELS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/reference/models");
+const MODELS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/reference/models");
 const EXAMPLE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/models/example-arm.figure.toml");
 const TOL: f64 = 1e-12;
 
 /// Every reference URDF; fails (never skips) when the reference data is missing.
 fn reference_urdfs() -> Vec<PathBuf> {
     let dir = Path::new(MODELS);
-    let entries = std::fs::read_dir(dir).unwrap_or_else(|e| {
-        panic!("reference models not found at {} ({e}): clone the project with ../shared beside it", dir.display())
-    });
+    let entries = std::fs::read_dir(dir).unwrap_or_else(|e| panic!("reference models not found at {} ({e})", dir.display()));
     let mut files: Vec<PathBuf> =
         entries.map(|e| e.unwrap().path()).filter(|p| p.extension().is_some_and(|e| e == "urdf")).collect();
     files.sort();
@@ -105,7 +105,7 @@ fn assert_same_dynamics(a: &Model, b: &Model, what: &str) {
 fn reference_urdfs_round_trip_through_urdf_and_figure_files() {
     for path in reference_urdfs() {
         let name = path.file_name().unwrap().to_string_lossy().to_string();
-        let model = urdf::load(&path).unwrap_or_else(|e| panic!("{e}"));
+        let model = common::load_reference_urdf(&path);
         let urdf_text = urdf_export::to_urdf(&model);
         let again = urdf::parse(&urdf_text, &format!("{name} exported"))
             .unwrap_or_else(|e| panic!("{e}\n--- exported URDF ---\n{urdf_text}"));
@@ -235,20 +235,7 @@ const URDF: &str = r#"<?xml version="1.0"?>
 </robot>
 "#;
 
-/// A valid two-link figure file; the tests break one thing in it at a time.
-const FIGURE: &str = r#"name = "two"
-
-[root]
-name = "base"
-
-[[body]]
-name = "arm"
-parent = "base"
-mass = 2.0
-com = [0.0, 0.0, -0.5]
-inertia = { ixx = 0.2, iyy = 0.2, izz = 0.01 }
-joint = { name = "hinge", type = "revolute", axis = [0, 1, 0], origin = { xyz = [0, 0, 0] }, lower_deg = -60, upper_deg = 60 }
-"#;
+use common::FIGURE;
 
 fn urdf_error(text: &str) -> String {
     urdf::parse(text, "bad.urdf").expect_err("the URDF should be refused").to_string()

@@ -1,11 +1,10 @@
 //! The engine against an established rigid-body library (Pinocchio 4.1.0): every file of
-//! `../shared/reference/`, every state, every quantity, joints matched by name, to 1e-9 relative.
+//! `tests/data/reference/`, every state, every quantity, joints matched by name, to 1e-9 relative.
 
 mod common;
 
-use common::{close, reference_files};
+use common::{close, load_reference_urdf, reference_files};
 use mintorque::dynamics::{aba::aba, crba::crba, kinematics, rnea::rnea, rnea_derivatives::rnea_derivatives, Data};
-use mintorque::model::urdf;
 use mintorque::spatial::{Force, Vec3};
 use mintorque::Model;
 use serde_json::Value;
@@ -57,7 +56,7 @@ fn dynamics_match_reference_data() {
     for path in reference_files() {
         let doc: Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
         let urdf_path = path.parent().unwrap().join(doc["urdf"].as_str().unwrap());
-        let model = urdf::load(&urdf_path).unwrap_or_else(|e| panic!("{e}"));
+        let model = load_reference_urdf(&urdf_path);
         let nv = model.nv();
         assert_eq!(nv, doc["nv"].as_u64().unwrap() as usize, "{}: DOF count", path.display());
         let perm = permutation(&model, &doc["joints"]);

@@ -1,6 +1,6 @@
 //! Evaluating the engine on a file of states — the `mintorque dynamics` command, and how anyone checks the
 //! engine against another library on their own model. The file format is the reference data's
-//! (`../shared/reference/README.md`): `joints[].name` gives the order of every vector in the file; each
+//! (`docs/states-file.md`): `joints[].name` gives the order of every vector in the file; each
 //! state has `q`, `v`, `a` and optionally `tau_rand`. Results come back in the file's joint order.
 
 use super::{aba::aba, rnea_derivatives::rnea_derivatives, Data};

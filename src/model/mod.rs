@@ -12,6 +12,7 @@
 pub mod figure;
 pub mod human;
 pub mod lock;
+pub mod toml_doc;
 pub mod urdf;
 pub mod urdf_export;
 pub mod validate;

@@ -8,6 +8,78 @@ use crate::error::{Error, Result};
 use crate::spatial::{Inertia, Mat3, Transform, Vec3};
 use std::collections::HashSet;
 
+/// A physically sensible range for a number people write, with its unit for messages. Numbers beyond
+/// these are typing slips (or fuzz), not figures: a mass of 1e308 kg passes every finiteness test and
+/// turns the dynamics into NaN. `docs/figure-file.md` and `docs/task-file.md` list them per field.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Range {
+    pub min: f64,
+    pub max: f64,
+    pub unit: &'static str,
+}
+
+impl Range {
+    /// `v` if it is a finite number within the range.
+    pub fn check(&self, v: f64) -> std::result::Result<f64, String> {
+        if v.is_finite() && v >= self.min && v <= self.max {
+            Ok(v)
+        } else if !v.is_finite() {
+            Err(format!("is not a finite number (must be from {} to {} {}), got {v}", self.min, self.max, self.unit))
+        } else {
+            Err(format!("must be a number from {} to {} {}, got {}", self.min, self.max, self.unit, short(v)))
+        }
+    }
+
+    /// Like [`Range::check`], but an infinite value of the right sign (no limit) passes too.
+    pub fn check_or_unlimited(&self, v: f64) -> std::result::Result<f64, String> {
+        if v == f64::INFINITY && self.max > 0.0 || v == f64::NEG_INFINITY && self.min < 0.0 {
+            return Ok(v);
+        }
+        self.check(v)
+    }
+
+    /// Every component within the range.
+    pub fn check_all(&self, v: &[f64]) -> std::result::Result<(), String> {
+        v.iter().try_for_each(|x| self.check(*x).map(|_| ()))
+    }
+}
+
+/// `v` as people write it: 1e308, not three hundred digits.
+fn short(v: f64) -> String {
+    if v != 0.0 && !(1e-4..1e6).contains(&v.abs()) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
+}
+
+/// The ranges, SI. Positions and lengths within a kilometre, masses up to ten tonnes.
+pub mod ranges {
+    use super::Range;
+    /// A body's or payload's mass.
+    pub const MASS: Range = Range { min: 0.0, max: 1e4, unit: "kg" };
+    /// A coordinate: an origin, a centre of mass, a target, a support rectangle's edge.
+    pub const POSITION: Range = Range { min: -1e3, max: 1e3, unit: "m" };
+    /// A size or a radius.
+    pub const LENGTH: Range = Range { min: 0.0, max: 1e3, unit: "m" };
+    /// A component of a rotational inertia (the most ten tonnes can have within a kilometre).
+    pub const INERTIA: Range = Range { min: -1e10, max: 1e10, unit: "kg·m²" };
+    /// A component of gravity (twice a hundred g's).
+    pub const GRAVITY: Range = Range { min: -1e3, max: 1e3, unit: "m/s²" };
+    /// A joint value or limit in SI: rad for revolutes, m for prismatic joints.
+    pub const JOINT: Range = Range { min: -1e3, max: 1e3, unit: "rad (m for prismatic)" };
+    /// A joint value or limit in a file's degrees (a hundred turns).
+    pub const DEGREES: Range = Range { min: -36000.0, max: 36000.0, unit: "degrees" };
+    /// An effort limit or a strength (N·m, N for prismatic).
+    pub const EFFORT: Range = Range { min: 0.0, max: 1e7, unit: "N·m (N for prismatic)" };
+    /// A passive spring's stiffness (N·m/rad, N/m for prismatic).
+    pub const STIFFNESS: Range = Range { min: 0.0, max: 1e7, unit: "N·m/rad (N/m for prismatic)" };
+    /// A passive damper (N·m·s/rad, N·s/m for prismatic).
+    pub const DAMPING: Range = Range { min: 0.0, max: 1e7, unit: "N·m·s/rad (N·s/m for prismatic)" };
+    /// A constant applied force, per component.
+    pub const FORCE: Range = Range { min: -1e6, max: 1e6, unit: "N" };
+}
+
 /// What a problem found by [`Model::check`] is about.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Culprit {
@@ -84,8 +156,8 @@ impl Model {
                 "moves no mass: the joint-space inertia matrix would be singular".into(),
             );
         }
-        if !self.gravity.iter().all(|x| x.is_finite()) {
-            return problem(Culprit::Model, "gravity".into(), "not finite".into());
+        if let Err(m) = ranges::GRAVITY.check_all(self.gravity.as_slice()) {
+            return problem(Culprit::Model, "gravity".into(), m);
         }
         Ok(())
     }
@@ -109,14 +181,20 @@ fn check_joint(model: &Model, i: usize) -> std::result::Result<(), String> {
     if l.lower.is_nan() || l.upper.is_nan() || l.lower > l.upper {
         return Err(format!("limits must satisfy lower ≤ upper, got [{}, {}]", l.lower, l.upper));
     }
-    if l.velocity.is_nan() || l.velocity < 0.0 || l.effort.is_nan() || l.effort < 0.0 {
-        return Err("velocity and effort limits must be ≥ 0".into());
+    let named = |what: &str, r: std::result::Result<f64, String>| r.map(|_| ()).map_err(|m| format!("{what} {m}"));
+    named("lower limit", ranges::JOINT.check_or_unlimited(l.lower))?;
+    named("upper limit", ranges::JOINT.check_or_unlimited(l.upper))?;
+    if l.velocity.is_nan() || l.velocity < 0.0 {
+        return Err("the velocity limit must be ≥ 0".into());
     }
+    named("effort limit", ranges::EFFORT.check_or_unlimited(l.effort))?;
     let s = &j.passive;
     if !(s.stiffness.is_finite() && s.rest.is_finite() && s.damping.is_finite()) || s.stiffness < 0.0 || s.damping < 0.0 {
         return Err("spring stiffness and damping must be finite and ≥ 0".into());
     }
-    Ok(())
+    named("spring stiffness", ranges::STIFFNESS.check(s.stiffness))?;
+    named("spring rest", ranges::JOINT.check(s.rest))?;
+    named("damping", ranges::DAMPING.check(s.damping))
 }
 
 /// A physically possible rigid body: mass ≥ 0, inertia symmetric positive semi-definite with principal
@@ -128,6 +206,9 @@ pub fn check_inertia(i: &Inertia) -> std::result::Result<(), String> {
     if i.mass < 0.0 {
         return Err(format!("mass must be ≥ 0, got {} kg", i.mass));
     }
+    ranges::MASS.check(i.mass).map_err(|m| format!("mass {m}"))?;
+    ranges::POSITION.check_all(i.com.as_slice()).map_err(|m| format!("centre of mass {m}"))?;
+    ranges::INERTIA.check_all(i.inertia_com.as_slice()).map_err(|m| format!("inertia {m}"))?;
     let m = &i.inertia_com;
     let scale = m.norm().max(1e-300);
     if (m - m.transpose()).norm() > 1e-9 * scale {
@@ -159,7 +240,7 @@ pub fn check_placement(x: &Transform) -> std::result::Result<(), String> {
     if (x.rotation.transpose() * x.rotation - Mat3::identity()).norm() > 1e-9 || x.rotation.determinant() < 0.0 {
         return Err("rotation is not a rotation matrix".into());
     }
-    Ok(())
+    ranges::POSITION.check_all(x.translation.as_slice()).map_err(|m| format!("position {m}"))
 }
 
 /// `v` scaled to unit length; a zero or non-finite axis has no direction.
@@ -188,5 +269,6 @@ pub fn check_shape(s: &Shape) -> std::result::Result<(), String> {
     if sizes.iter().any(|&x| x < 0.0) {
         return Err(format!("sizes and radii must be ≥ 0 m, got {sizes:?}"));
     }
-    Ok(())
+    ranges::LENGTH.check_all(&sizes).map_err(|m| format!("size {m}"))?;
+    ranges::POSITION.check_all(&numbers).map_err(|m| format!("position {m}"))
 }

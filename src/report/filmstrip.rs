@@ -8,52 +8,10 @@ use super::scene::{self, JointMarker};
 use crate::dynamics::{kinematics, Data};
 use crate::error::{Error, Result};
 use crate::model::{Model, Shape};
+pub use crate::plan::task::View;
 use crate::spatial::Vec3;
 use std::fmt::Write as _;
 use std::sync::{Arc, OnceLock};
-
-/// Which way the camera looks. The figure faces +x, z is up.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum View {
-    /// From the figure's right, looking along +y: x to the right, z up (the paper's sagittal figures).
-    #[default]
-    Side,
-    /// From in front, looking along −x: y to the right, z up.
-    Front,
-    /// From above, looking down −z: x to the right, y up.
-    Top,
-}
-
-impl View {
-    /// Screen coordinates (right, up) and depth (away from the viewer) of a world point.
-    fn project(self, p: &Vec3) -> ([f64; 2], f64) {
-        match self {
-            View::Side => ([p.x, p.z], p.y),
-            View::Front => ([p.y, p.z], -p.x),
-            View::Top => ([p.x, p.y], -p.z),
-        }
-    }
-
-    pub fn name(self) -> &'static str {
-        match self {
-            View::Side => "side",
-            View::Front => "front",
-            View::Top => "top",
-        }
-    }
-}
-
-impl std::str::FromStr for View {
-    type Err = String;
-    fn from_str(s: &str) -> std::result::Result<View, String> {
-        match s.to_ascii_lowercase().as_str() {
-            "side" => Ok(View::Side),
-            "front" => Ok(View::Front),
-            "top" => Ok(View::Top),
-            _ => Err(format!("unknown view \"{s}\": use side, front or top")),
-        }
-    }
-}
 
 /// Panel height the figure is scaled to (px), and the widest a panel may get.
 const FIGURE_HEIGHT: f64 = 240.0;

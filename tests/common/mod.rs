@@ -1,17 +1,21 @@
-//! Shared helpers for the integration tests: the reference data of `../shared/reference/` and random trees.
+//! Shared helpers for the integration tests: the reference data of `tests/data/reference/` and random trees.
 #![allow(dead_code)]
 
 use std::path::PathBuf;
 
-/// `../shared/reference` beside the project's checkout. Tests fail (never skip) when it is missing.
+/// `tests/data/reference` in the repository (Pinocchio's reference data, with its README). Tests fail
+/// (never skip) when it is missing.
 pub fn reference_dir() -> PathBuf {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/reference");
-    assert!(
-        dir.join("README.md").exists(),
-        "reference data not found at {} — clone the project with ../shared beside it",
-        dir.display()
-    );
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/reference");
+    assert!(dir.join("README.md").exists(), "reference data not found at {}", dir.display());
     dir
+}
+
+/// The reference URDFs as the reference data reads them: a `<mimic>` joint (the Panda's second finger) is a
+/// degree of freedom of its own (`tests/data/reference/README.md`).
+pub fn load_reference_urdf(path: &std::path::Path) -> mintorque::Model {
+    use mintorque::model::urdf::{self, Mimic, Options};
+    urdf::load_with(path, Options { mimic: Mimic::Independent }).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// Every `*.json` reference file, sorted.
@@ -100,3 +104,28 @@ pub fn random_tree(seed: u64, n: usize) -> Model {
     model.validate("random tree").expect("random tree is valid");
     model
 }
+
+/// A valid two-link figure file; the tests break one thing in it at a time.
+pub const FIGURE: &str = r#"name = "two"
+
+[root]
+name = "base"
+
+[[body]]
+name = "arm"
+parent = "base"
+mass = 2.0
+com = [0.0, 0.0, -0.5]
+inertia = { ixx = 0.2, iyy = 0.2, izz = 0.01 }
+joint = { name = "hinge", type = "revolute", axis = [0, 1, 0], origin = { xyz = [0, 0, 0] }, lower_deg = -60, upper_deg = 60 }
+"#;
+
+/// A valid task on the double pendulum; the tests break or extend it.
+pub const TASK: &str = r#"
+[model]
+urdf = "../models/double_pendulum.urdf"
+[motion]
+duration = 1.5
+start = { shoulder = 0.0, elbow = 0.0 }
+goal = { shoulder = 90.0, elbow = 0.0 }
+"#;

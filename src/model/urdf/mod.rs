@@ -2,12 +2,17 @@
 //! box/cylinder/sphere visuals kept for drawing, meshes ignored; a joint spring from the non-standard
 //! `<dynamics spring_stiffness spring_reference>`). URDF is SI: metres, kilograms, radians.
 //!
+//! Strict where the physics is ([`schema`]): an unknown or repeated element or attribute there is an error
+//! naming the file, the line, the element and the nearest known name. `<mimic>` (a joint coupled to another)
+//! is refused unless [`Options::mimic`] says to treat the joint as independent. Values are checked as read,
+//! against the ranges of [`super::validate`].
+//!
 //! The root link (the one link that is no joint's child) is welded to the world. Fixed joints are merged
 //! away: a link reached through fixed joints adds its mass to the moving body it is welded to and becomes
 //! a named frame of that body. Bodies are numbered depth-first in document order; every file format maps
 //! joints by name, so the order is ours to choose.
 
-use super::validate::Culprit;
+use super::validate::{ranges, Culprit, Range};
 use super::{Body, Frame, Joint, JointKind, JointLimits, Model, Passive, Shape};
 use crate::error::{Error, Result};
 use crate::spatial::{Inertia, Mat3, Transform, Vec3};
@@ -15,16 +20,45 @@ use roxmltree::{Document, Node};
 use std::collections::HashMap;
 use std::path::Path;
 
+mod schema;
+
+/// How to read what the engine does not model.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Options {
+    pub mimic: Mimic,
+}
+
+/// What to do with a `<mimic>` joint (one whose value follows another's).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Mimic {
+    /// An error naming the joint: couplings are not supported (the default).
+    #[default]
+    Refuse,
+    /// The joint is a degree of freedom of its own, the coupling dropped (how the reference data of
+    /// `tests/data/reference` treats the Panda's two fingers).
+    Independent,
+}
+
 /// Reads and validates a URDF file.
 pub fn load(path: &Path) -> Result<Model> {
+    load_with(path, Options::default())
+}
+
+/// [`load`] with options.
+pub fn load_with(path: &Path, options: Options) -> Result<Model> {
     let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
-    parse(&text, &path.display().to_string())
+    parse_with(&text, &path.display().to_string(), options)
 }
 
 /// Parses URDF text; `origin` names its source in error messages.
 pub fn parse(text: &str, origin: &str) -> Result<Model> {
+    parse_with(text, origin, Options::default())
+}
+
+/// [`parse`] with options.
+pub fn parse_with(text: &str, origin: &str, options: Options) -> Result<Model> {
     let doc = Document::parse(text).map_err(|e| Error::model(origin, "XML", e.to_string()))?;
-    let cx = Cx { origin, doc: &doc };
+    let cx = Cx { origin, doc: &doc, options };
     let robot = doc.root_element();
     if robot.tag_name().name() != "robot" {
         return Err(cx.err(robot, "root element", format!("expected <robot>, found <{}>", robot.tag_name().name())));
@@ -194,6 +228,7 @@ struct UrdfJoint {
 struct Cx<'a, 'i> {
     origin: &'a str,
     doc: &'a Document<'i>,
+    options: Options,
 }
 
 impl Cx<'_, '_> {
@@ -247,7 +282,9 @@ impl Cx<'_, '_> {
             None => Ok(Transform::IDENTITY),
             Some(o) => {
                 let e = format!("{element} <origin>");
-                Ok(Transform::from_rpy_xyz(self.vec3(o, "rpy", &e, Vec3::zeros())?, self.vec3(o, "xyz", &e, Vec3::zeros())?))
+                let x = Transform::from_rpy_xyz(self.vec3(o, "rpy", &e, Vec3::zeros())?, self.vec3(o, "xyz", &e, Vec3::zeros())?);
+                super::validate::check_placement(&x).map_err(|m| self.err(o, &e, format!("xyz {m}")))?;
+                Ok(x)
             }
         }
     }
@@ -255,6 +292,7 @@ impl Cx<'_, '_> {
     fn link(&self, node: Node) -> Result<UrdfLink> {
         let name = self.name(node, "link")?;
         let what = format!("link \"{name}\"");
+        self.check_schema(node, &schema::LINK, &what)?;
         let inertia = match self.child(node, "inertial") {
             None => Inertia::ZERO,
             Some(inertial) => {
@@ -267,6 +305,7 @@ impl Cx<'_, '_> {
                 if mass < 0.0 {
                     return Err(self.err(mass_node, &format!("{e} <mass>"), format!("mass must be ≥ 0 kg, got {mass}")));
                 }
+                ranges::MASS.check(mass).map_err(|m| self.err(mass_node, &format!("{e} <mass>"), format!("value {m}")))?;
                 let inode = self.child(inertial, "inertia").ok_or_else(|| self.err(inertial, &e, "has no <inertia>".into()))?;
                 let ie = format!("{e} <inertia>");
                 let g = |a: &str| self.optional_number(inode, a, &ie, 0.0);
@@ -304,6 +343,15 @@ impl Cx<'_, '_> {
     fn joint(&self, node: Node) -> Result<UrdfJoint> {
         let name = self.name(node, "joint")?;
         let what = format!("joint \"{name}\"");
+        self.check_schema(node, &schema::JOINT, &what)?;
+        if let (Some(m), Mimic::Refuse) = (self.child(node, "mimic"), self.options.mimic) {
+            let leader = m.attribute("joint").unwrap_or("another joint");
+            return Err(self.err(
+                m,
+                &format!("{what} <mimic>"),
+                format!("coupled joints are not supported: \"{name}\" would follow \"{leader}\"; remove the <mimic> to treat \"{name}\" as an independent joint"),
+            ));
+        }
         let ty = node.attribute("type").ok_or_else(|| self.err(node, &what, "has no type attribute".into()))?;
         let kind = match ty {
             "revolute" | "continuous" => UrdfKind::Moving(JointKind::Revolute),
@@ -325,6 +373,21 @@ impl Cx<'_, '_> {
         };
         let (parent, child) = (link_of("parent")?, link_of("child")?);
         let origin = self.origin(node, &what)?;
+        if matches!(kind, UrdfKind::Fixed) {
+            // Axis, limits and dynamics mean nothing on a weld (files in the wild write axis="0 0 0").
+            let limits = JointLimits::default();
+            return Ok(UrdfJoint {
+                name,
+                line: self.line(node),
+                kind,
+                parent,
+                child,
+                origin,
+                axis: Vec3::x(),
+                limits,
+                passive: Passive::default(),
+            });
+        }
         let mut axis = Vec3::new(1.0, 0.0, 0.0);
         if let Some(a) = self.child(node, "axis") {
             let e = format!("{what} <axis>");
@@ -335,16 +398,32 @@ impl Cx<'_, '_> {
             }
             axis /= n;
         }
+        let limits = self.limits(node, &what, ty == "continuous")?;
+        let passive = self.passive(node, &what)?;
+        Ok(UrdfJoint { name, line: self.line(node), kind, parent, child, origin, axis, limits, passive })
+    }
+
+    /// `<limit>`: effort and velocity, and the position range unless `continuous`; absent means none.
+    fn limits(&self, node: Node, what: &str, continuous: bool) -> Result<JointLimits> {
         let mut limits = JointLimits::default();
         if let Some(l) = self.child(node, "limit") {
             let e = format!("{what} <limit>");
-            limits.effort = self.optional_number(l, "effort", &e, f64::INFINITY)?;
+            let ranged = |attr: &str, range: &Range, default: f64| -> Result<f64> {
+                let v = self.optional_number(l, attr, &e, default)?;
+                range.check_or_unlimited(v).map_err(|m| self.err(l, &e, format!("{attr} {m}")))
+            };
+            limits.effort = ranged("effort", &ranges::EFFORT, f64::INFINITY)?;
             limits.velocity = self.optional_number(l, "velocity", &e, f64::INFINITY)?;
-            if ty != "continuous" {
-                limits.lower = self.optional_number(l, "lower", &e, f64::NEG_INFINITY)?;
-                limits.upper = self.optional_number(l, "upper", &e, f64::INFINITY)?;
+            if !continuous {
+                limits.lower = ranged("lower", &ranges::JOINT, f64::NEG_INFINITY)?;
+                limits.upper = ranged("upper", &ranges::JOINT, f64::INFINITY)?;
             }
         }
+        Ok(limits)
+    }
+
+    /// `<dynamics>`: the damper, and our spring.
+    fn passive(&self, node: Node, what: &str) -> Result<Passive> {
         let mut passive = Passive::default();
         if let Some(d) = self.child(node, "dynamics") {
             let e = format!("{what} <dynamics>");
@@ -355,7 +434,7 @@ impl Cx<'_, '_> {
             passive.stiffness = self.optional_number(d, "spring_stiffness", &e, 0.0)?;
             passive.rest = self.optional_number(d, "spring_reference", &e, 0.0)?;
         }
-        Ok(UrdfJoint { name, line: self.line(node), kind, parent, child, origin, axis, limits, passive })
+        Ok(passive)
     }
 }
 

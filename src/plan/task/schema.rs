@@ -1,0 +1,387 @@
+//! The task file's schema: what serde reads, with the defaults `docs/task-file.md` documents. Unknown
+//! fields are errors (`deny_unknown_fields`), fixed-length arrays are exactly that long
+//! ([`exact`](crate::model::toml_doc::exact)); ranges and combinations are checked when the task is
+//! resolved ([`super::resolve`]).
+
+use crate::model::toml_doc::exact;
+use crate::plan::SolverKind;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+/// A posture: joint name → value in degrees (revolute) or metres (prismatic).
+pub type Posture = BTreeMap<String, f64>;
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TaskFile {
+    pub model: ModelSection,
+    pub motion: MotionSection,
+    #[serde(default)]
+    pub environment: EnvironmentSection,
+    #[serde(default)]
+    pub constraints: ConstraintsSection,
+    #[serde(default)]
+    pub objective: ObjectiveSection,
+    #[serde(default)]
+    pub discretization: DiscretizationSection,
+    #[serde(default)]
+    pub solver: SolverSection,
+    #[serde(default)]
+    pub output: OutputSection,
+}
+
+/// Which figure: exactly one of `urdf`, `figure` or `human`.
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ModelSection {
+    /// A URDF file, relative to the task file.
+    pub urdf: Option<PathBuf>,
+    /// A figure file (TOML), relative to the task file.
+    pub figure: Option<PathBuf>,
+    /// A built-in human structure (`mintorque examples` lists them), scaled by `stature` (m) and `mass` (kg).
+    pub human: Option<String>,
+    pub stature: Option<f64>,
+    pub mass: Option<f64>,
+    /// Joints welded at a value for this task (degrees, metres for prismatic): fewer degrees of freedom.
+    #[serde(default)]
+    pub lock: BTreeMap<String, f64>,
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MotionSection {
+    /// Seconds.
+    pub duration: f64,
+    /// Joints not named are at 0, or at the base posture's value.
+    pub start: Posture,
+    pub goal: Posture,
+    /// The posture unnamed joints take: "zero" (default) or, for a built-in human, "reference" (standing /
+    /// dead hang / top of a push-up).
+    #[serde(default = "zero")]
+    pub base: String,
+    /// `q̇ = 0` at both ends (default true).
+    #[serde(default = "yes")]
+    pub zero_end_velocity: bool,
+    /// Postures the initial guess passes through (the paper's guessed midpoint), at `t` seconds; joints
+    /// not named follow the straight line.
+    #[serde(default)]
+    pub via: Vec<Via>,
+    /// Joints that may be adjusted (from the given values) so that the start and goal postures satisfy the
+    /// contacts exactly — a closed loop's postures are hard to write by hand (e.g. the bottom of a push-up:
+    /// give the elbow angle, let the body tilt and the shoulder follow).
+    #[serde(default)]
+    pub close_loop_with: Vec<String>,
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Via {
+    pub t: f64,
+    pub posture: Posture,
+}
+
+fn yes() -> bool {
+    true
+}
+
+fn zero() -> String {
+    "zero".into()
+}
+
+/// Gravity: a preset name or a vector (m/s², world axes, z up).
+#[derive(Clone, Debug, Serialize)]
+#[serde(untagged)]
+pub enum Gravity {
+    Preset(String),
+    Vector([f64; 3]),
+}
+
+/// What `environment.gravity` accepts, for every message about it.
+pub const GRAVITY_EXPECTED: &str = "\"earth\", \"mars\", \"moon\", \"space\" or a 3-vector [gx, gy, gz] in m/s²";
+
+impl<'de> Deserialize<'de> for Gravity {
+    /// By hand rather than `untagged`, whose error ("did not match any variant") says nothing of what would.
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Visitor;
+        impl<'de> serde::de::Visitor<'de> for Visitor {
+            type Value = Gravity;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str(GRAVITY_EXPECTED)
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<Gravity, E> {
+                Ok(Gravity::Preset(v.to_string()))
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(self, mut seq: A) -> Result<Gravity, A::Error> {
+                let mut v = Vec::new();
+                while let Some(x) = seq.next_element::<f64>()? {
+                    v.push(x);
+                }
+                let n = v.len();
+                v.try_into().map(Gravity::Vector).map_err(|_| serde::de::Error::invalid_length(n, &self))
+            }
+        }
+        d.deserialize_any(Visitor)
+    }
+}
+
+impl Default for Gravity {
+    fn default() -> Self {
+        Gravity::Preset("earth".into())
+    }
+}
+
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EnvironmentSection {
+    #[serde(default)]
+    pub gravity: Gravity,
+    /// Masses held rigidly at frames (a barbell in the hands).
+    #[serde(default)]
+    pub payload: Vec<Payload>,
+    /// Constant forces at frames, world axes (N).
+    #[serde(default)]
+    pub force: Vec<ForceLoad>,
+    /// Passive spring/damper per joint, overriding the model's.
+    #[serde(default)]
+    pub passive: BTreeMap<String, PassiveSpec>,
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Payload {
+    pub frame: String,
+    /// kg
+    pub mass: f64,
+    /// Centre of mass in the frame (m), default its origin.
+    #[serde(default, deserialize_with = "exact::array")]
+    pub com: [f64; 3],
+    /// Principal moments about the centre of mass in the frame's axes (kg·m²), default a point mass.
+    #[serde(default, deserialize_with = "exact::array")]
+    pub inertia: [f64; 3],
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ForceLoad {
+    pub frame: String,
+    /// N, world axes.
+    #[serde(deserialize_with = "exact::array")]
+    pub force: [f64; 3],
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PassiveSpec {
+    /// N·m/rad
+    #[serde(default)]
+    pub stiffness: f64,
+    /// degrees
+    #[serde(default)]
+    pub rest: f64,
+    /// N·m·s/rad
+    #[serde(default)]
+    pub damping: f64,
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ConstraintsSection {
+    /// Keep joints within the model's limits (default true).
+    #[serde(default = "yes")]
+    pub position_limits: bool,
+    /// Keep torques within the model's effort limits (default true).
+    #[serde(default = "yes")]
+    pub torque_limits: bool,
+    /// Overrides: joint → [lower, upper] in degrees (metres for prismatic).
+    #[serde(default, deserialize_with = "exact::map")]
+    pub position_limit: BTreeMap<String, [f64; 2]>,
+    /// Overrides: joint → |τ| limit in N·m (N for prismatic).
+    #[serde(default)]
+    pub torque_limit: BTreeMap<String, f64>,
+    #[serde(default)]
+    pub contact: Vec<ContactSpec>,
+    pub balance: Option<BalanceSpec>,
+}
+
+impl Default for ConstraintsSection {
+    fn default() -> Self {
+        ConstraintsSection {
+            position_limits: true,
+            torque_limits: true,
+            position_limit: BTreeMap::new(),
+            torque_limit: BTreeMap::new(),
+            contact: vec![],
+            balance: None,
+        }
+    }
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ContactSpec {
+    /// Defaults to the frame's name.
+    pub name: Option<String>,
+    pub frame: String,
+    /// "point" (default), "plane" or "line".
+    #[serde(default = "point", rename = "type")]
+    pub kind: String,
+    /// World point (m); default where the frame is in the start posture.
+    #[serde(default, deserialize_with = "exact::option")]
+    pub target: Option<[f64; 3]>,
+    /// Plane normal, or the ground's outward normal for push-only contacts.
+    #[serde(default, deserialize_with = "exact::option")]
+    pub normal: Option<[f64; 3]>,
+    /// Line direction.
+    #[serde(default, deserialize_with = "exact::option")]
+    pub direction: Option<[f64; 3]>,
+    /// Contact with the ground: the reaction only pushes along `normal` (default false).
+    #[serde(default)]
+    pub push_only: bool,
+    /// Coulomb friction coefficient (needs `push_only`).
+    pub friction: Option<f64>,
+}
+
+fn point() -> String {
+    "point".into()
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BalanceSpec {
+    /// Support rectangle, world metres.
+    #[serde(deserialize_with = "exact::array")]
+    pub x: [f64; 2],
+    #[serde(deserialize_with = "exact::array")]
+    pub y: [f64; 2],
+    #[serde(default)]
+    pub ground_z: f64,
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ObjectiveSection {
+    /// "torque": ½∫τᵀWτ dt of the active torques.
+    #[serde(default = "torque")]
+    pub kind: String,
+    /// Joint → weight (default 1).
+    #[serde(default)]
+    pub weights: BTreeMap<String, f64>,
+}
+
+fn torque() -> String {
+    "torque".into()
+}
+
+impl Default for ObjectiveSection {
+    fn default() -> Self {
+        ObjectiveSection { kind: torque(), weights: BTreeMap::new() }
+    }
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DiscretizationSection {
+    #[serde(default = "sixteen")]
+    pub control_points: usize,
+    #[serde(default = "four")]
+    pub nodes_per_span: usize,
+    /// "linear" (default), "via" (through `motion.via`), or a CSV file of `time, joint…` in degrees.
+    #[serde(default = "linear")]
+    pub initial_guess: String,
+}
+
+fn sixteen() -> usize {
+    16
+}
+fn four() -> usize {
+    4
+}
+fn linear() -> String {
+    "linear".into()
+}
+
+impl Default for DiscretizationSection {
+    fn default() -> Self {
+        DiscretizationSection { control_points: 16, nodes_per_span: 4, initial_guess: linear() }
+    }
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolverSection {
+    #[serde(default = "structured")]
+    pub method: SolverKind,
+    #[serde(default, flatten)]
+    pub settings: SolverSettings,
+}
+
+fn structured() -> SolverKind {
+    SolverKind::Structured
+}
+
+impl Default for SolverSection {
+    fn default() -> Self {
+        SolverSection { method: SolverKind::Structured, settings: SolverSettings::default() }
+    }
+}
+
+/// The solver options a task may set (others keep their defaults).
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolverSettings {
+    /// Relative stationarity tolerance.
+    #[serde(default = "tol")]
+    pub tolerance: f64,
+    /// Scaled constraint-violation tolerance.
+    #[serde(default = "tol")]
+    pub violation_tolerance: f64,
+    #[serde(default = "max_iterations")]
+    pub max_iterations: usize,
+    /// Seconds.
+    pub time_limit: Option<f64>,
+}
+
+fn tol() -> f64 {
+    1e-6
+}
+fn max_iterations() -> usize {
+    5000
+}
+
+impl Default for SolverSettings {
+    fn default() -> Self {
+        SolverSettings { tolerance: tol(), violation_tolerance: tol(), max_iterations: max_iterations(), time_limit: None }
+    }
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSection {
+    /// Samples per second in trajectory.csv.
+    #[serde(default = "hundred")]
+    pub sample_rate: f64,
+    /// Strength limits (N·m) of the ergonomic report, per joint; default the model's effort limits.
+    #[serde(default)]
+    pub strength: BTreeMap<String, f64>,
+    /// Plots (SVG and PNG) of q, q̇, q̈, τ and contact forces.
+    #[serde(default = "yes")]
+    pub plots: bool,
+    /// The filmstrip's camera: "side" (default, looking along +y), "front" or "top".
+    #[serde(default = "side")]
+    pub filmstrip_view: String,
+}
+
+fn side() -> String {
+    "side".into()
+}
+
+fn hundred() -> f64 {
+    100.0
+}
+
+impl Default for OutputSection {
+    fn default() -> Self {
+        OutputSection { sample_rate: 100.0, strength: BTreeMap::new(), plots: true, filmstrip_view: side() }
+    }
+}
