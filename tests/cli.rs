@@ -134,7 +134,11 @@ fn a_previous_trajectory_warm_starts_a_finer_plan() {
         .arg("examples/double_pendulum.toml")
         .current_dir(root()));
     assert_eq!(code, 0);
-    let task = double_pendulum_task(&dir, "fine.toml", "[discretization]\ncontrol_points = 24\ninitial_guess = \"coarse/trajectory.csv\"");
+    let task = double_pendulum_task(
+        &dir,
+        "fine.toml",
+        "[discretization]\ncontrol_points = 24\ninitial_guess = \"coarse/trajectory.csv\"",
+    );
     let (code, _, stderr) = run(mintorque().args(["plan", "-q", "--no-plots", "--out"]).arg(dir.join("fine")).arg(&task));
     assert_eq!(code, 0, "{stderr}");
     let read = |p: &Path| -> serde_json::Value { serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap() };
@@ -226,7 +230,9 @@ fn the_filmstrip_follows_the_task_and_other_views_go_beside_it() {
 #[test]
 fn an_invalid_setting_exits_1_naming_the_field_and_writes_nothing() {
     let dir = scratch("settings");
-    for (extra, field) in [("[solver]\ntime_limit = -1", "solver.time_limit"), ("[solver]\nmax_iterations = 0", "solver.max_iterations")] {
+    for (extra, field) in
+        [("[solver]\ntime_limit = -1", "solver.time_limit"), ("[solver]\nmax_iterations = 0", "solver.max_iterations")]
+    {
         let task = double_pendulum_task(&dir, "task.toml", extra);
         let (code, _, stderr) = run(mintorque().args(["plan", "-q", "--out"]).arg(dir.join("out")).arg(&task));
         assert_eq!(code, 1, "{stderr}");
@@ -253,7 +259,8 @@ fn every_command_exits_0_1_or_3() {
     assert_eq!(code, 0);
     let file = dir.join("a-file");
     std::fs::write(&file, "x").unwrap();
-    let (code, _, stderr) = run(mintorque().args(["plan", "examples/pendulum.toml", "-q", "--out"]).arg(&file).current_dir(root()));
+    let (code, _, stderr) =
+        run(mintorque().args(["plan", "examples/pendulum.toml", "-q", "--out"]).arg(&file).current_dir(root()));
     assert_eq!(code, 1);
     assert!(stderr.contains("a-file") && stderr.contains("not a directory"), "{stderr}");
     assert!(!stderr.contains("os error"), "{stderr}");

@@ -4,10 +4,10 @@
 
 use mintorque::dynamics::{kinematics, Data};
 use mintorque::model::human::{HumanParams, Structure};
-use mintorque::model::{figure, urdf, Model};
+use mintorque::model::{urdf, Model};
+use mintorque::plan_dir::{self, PlanContents, WriteOptions};
 use mintorque::report::filmstrip::{filmstrip_png, filmstrip_svg, View};
 use mintorque::report::record::{ContactRecord, PlanRecord, SampleRecord, FORMAT};
-use mintorque::plan_dir::{self, PlanContents, WriteOptions};
 use mintorque::report::viewer::{embedded_data, file_url, motion_html, VIEW_FILES};
 use std::path::{Path, PathBuf};
 

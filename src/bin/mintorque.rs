@@ -115,7 +115,6 @@ enum SolverArg {
     AuglagBfgs,
 }
 
-
 /// Bad input or settings (named in the message), for every command.
 const BAD_INPUT: u8 = 1;
 /// A plan that did not converge (its results are still written, marked as such), or a non-finite result
@@ -211,7 +210,9 @@ fn run_figure(model: Option<PathBuf>, human: Option<String>, stature: f64, mass:
     use mintorque::model::{figure, human as jack, urdf_export};
     let model = match (model, human) {
         (Some(path), None) => load_model(&path)?,
-        (None, Some(name)) => jack::Structure::from_name(&name)?.build(jack::HumanParams { stature_m: stature, mass_kg: mass })?,
+        (None, Some(name)) => {
+            jack::Structure::from_name(&name)?.build(jack::HumanParams { stature_m: stature, mass_kg: mass })?
+        }
         _ => anyhow::bail!("give a model file or --human NAME"),
     };
     let text = match out.extension().and_then(|e| e.to_str()) {
@@ -279,7 +280,8 @@ fn run_dynamics(model: &Path, states: Option<PathBuf>, gravity: Option<Vec<f64>>
     if let Some((k, what)) = results.iter().enumerate().find_map(|(k, r)| non_finite_result(r).map(|w| (k, w))) {
         anyhow::bail!("{}: states[{k}]: the result is not finite: {what} (nothing printed)", path.display());
     }
-    let json = serde_json::json!({ "model": model.name, "joints": file.joint_names, "gravity": [g.x, g.y, g.z], "states": results });
+    let json =
+        serde_json::json!({ "model": model.name, "joints": file.joint_names, "gravity": [g.x, g.y, g.z], "states": results });
     println!("{}", serde_json::to_string_pretty(&json)?);
     Ok(())
 }
@@ -295,7 +297,10 @@ fn run(cli: Cli) -> Result<ExitCode> {
         }
         Command::Export { dir, format, out } => run_export(&dir, &format, out).map(|()| ExitCode::SUCCESS),
         Command::View { dir, filmstrip } => {
-            let view = filmstrip.map(|v| v.parse::<report::filmstrip::View>()).transpose().map_err(|m| anyhow::anyhow!("--filmstrip: {m}"))?;
+            let view = filmstrip
+                .map(|v| v.parse::<report::filmstrip::View>())
+                .transpose()
+                .map_err(|m| anyhow::anyhow!("--filmstrip: {m}"))?;
             let page = plan_dir::write_views(&dir, view)?;
             report::viewer::open_in_browser(&page);
             Ok(ExitCode::SUCCESS)
@@ -311,7 +316,9 @@ fn run(cli: Cli) -> Result<ExitCode> {
             Ok(ExitCode::SUCCESS)
         }
         Command::Simulate { plan: path, steps } => Ok(exit(run_simulate(&path, steps)?)),
-        Command::Dynamics { model, states, gravity, bench } => run_dynamics(&model, states, gravity, bench).map(|()| ExitCode::SUCCESS),
+        Command::Dynamics { model, states, gravity, bench } => {
+            run_dynamics(&model, states, gravity, bench).map(|()| ExitCode::SUCCESS)
+        }
     }
 }
 

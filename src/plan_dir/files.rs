@@ -4,9 +4,9 @@
 use super::Result;
 use crate::model::{figure, Model};
 use crate::plan::{self, task::Task, Plan};
+use crate::report::ergonomics::{self, Ergonomics};
 use crate::report::filmstrip::{self, View};
 use crate::report::record::{PlanRecord, SampleRecord};
-use crate::report::ergonomics::{self, Ergonomics};
 use crate::report::{self, viewer, Summary};
 use std::collections::BTreeMap;
 

@@ -117,7 +117,10 @@ pub fn load_task(dir: &Path) -> Result<(LoadedPlan, Task, Vec<f64>)> {
     if r.n_ctrl != task.spec.n_ctrl || r.ctrl.len() != r.n_ctrl * layout.nv || r.lambda_ctrl.len() != r.n_ctrl * layout.n_lambda {
         let message = format!(
             "plan.json has {} control points of {} joints, task.resolved.toml asks for {} of {}: they do not belong together",
-            r.n_ctrl, r.joint_names.len(), task.spec.n_ctrl, layout.nv
+            r.n_ctrl,
+            r.joint_names.len(),
+            task.spec.n_ctrl,
+            layout.nv
         );
         return Err(Error::Dir { path, message });
     }
@@ -187,7 +190,9 @@ fn read_files(dir: &Path, manifest: &Manifest) -> Result<BTreeMap<String, Vec<u8
     for name in manifest.files.keys() {
         let path = dir.join(name);
         let bytes = std::fs::read(&path).map_err(|e| match e.kind() {
-            std::io::ErrorKind::NotFound => Error::Dir { path: path.clone(), message: "is missing (manifest.json lists it)".into() },
+            std::io::ErrorKind::NotFound => {
+                Error::Dir { path: path.clone(), message: "is missing (manifest.json lists it)".into() }
+            }
             _ => crate::Error::io(&path, e).into(),
         })?;
         manifest.check(dir, name, &bytes)?;
