@@ -271,7 +271,6 @@ fn a_record_that_does_not_fit_its_model_is_an_error_not_a_panic() {
     // Drawing it anyway (as a library caller might) still does not panic.
     let _ = motion_html(&model, &rec, None);
     let _ = filmstrip_svg(&model, &rec, 3, View::Side);
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 /// Pages for `scripts/browser-test.sh` to open, from these hand-made records: a shapeless double pendulum
