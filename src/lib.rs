@@ -20,6 +20,7 @@ pub mod dynamics;
 pub mod error;
 pub mod model;
 pub mod plan;
+pub mod plan_dir;
 pub mod report;
 pub mod solve;
 pub mod spatial;

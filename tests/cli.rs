@@ -18,6 +18,16 @@ fn scratch(name: &str) -> PathBuf {
     d
 }
 
+/// The double pendulum's task, its model path made absolute, written into `dir` as `name`.
+fn double_pendulum_task(dir: &Path, name: &str, extra: &str) -> PathBuf {
+    let text = std::fs::read_to_string(root().join("examples/double_pendulum.toml"))
+        .unwrap()
+        .replace("../models/", &format!("{}/models/", root().display()));
+    let task = dir.join(name);
+    std::fs::write(&task, format!("{text}\n{extra}\n")).unwrap();
+    task
+}
+
 fn run(cmd: &mut Command) -> (i32, String, String) {
     let out = cmd.output().unwrap();
     (out.status.code().unwrap_or(-1), String::from_utf8_lossy(&out.stdout).into(), String::from_utf8_lossy(&out.stderr).into())
@@ -64,11 +74,7 @@ fn plan_writes_every_output_and_exits_zero() {
 #[test]
 fn a_plan_that_does_not_converge_says_why_and_exits_3() {
     let dir = scratch("nonconv");
-    let task = dir.join("task.toml");
-    let text = std::fs::read_to_string(root().join("examples/double_pendulum.toml"))
-        .unwrap()
-        .replace("../models/", &format!("{}/models/", root().display()));
-    std::fs::write(&task, format!("{text}\n[solver]\nmax_iterations = 2\n")).unwrap();
+    let task = double_pendulum_task(&dir, "task.toml", "[solver]\nmax_iterations = 2");
     let (code, _, stderr) = run(mintorque().args(["plan", "-q", "--out"]).arg(dir.join("out")).arg(&task));
     assert_eq!(code, 3, "{stderr}");
     assert!(stderr.contains("did not converge") && stderr.contains("iteration limit"), "{stderr}");
@@ -80,13 +86,9 @@ fn a_plan_that_does_not_converge_says_why_and_exits_3() {
 #[test]
 fn an_infeasible_task_names_the_constraint_it_cannot_meet() {
     let dir = scratch("infeasible");
-    let task = dir.join("task.toml");
     // Raising the double pendulum's upper link to horizontal stores 113 J of potential energy; joints limited
     // to 2 N·m, turning through about a radian, can supply a few joules in 1.5 s.
-    let text = std::fs::read_to_string(root().join("examples/double_pendulum.toml"))
-        .unwrap()
-        .replace("../models/", &format!("{}/models/", root().display()));
-    std::fs::write(&task, format!("{text}\n[constraints]\ntorque_limit = {{ shoulder = 2.0, elbow = 2.0 }}\n")).unwrap();
+    let task = double_pendulum_task(&dir, "task.toml", "[constraints]\ntorque_limit = { shoulder = 2.0, elbow = 2.0 }");
     let (code, _, stderr) = run(mintorque().args(["plan", "-q", "--out"]).arg(dir.join("out")).arg(&task));
     assert_eq!(code, 3, "{stderr}");
     assert!(stderr.contains("torque limit") && (stderr.contains("shoulder") || stderr.contains("elbow")), "{stderr}");
@@ -132,12 +134,11 @@ fn a_previous_trajectory_warm_starts_a_finer_plan() {
         .arg("examples/double_pendulum.toml")
         .current_dir(root()));
     assert_eq!(code, 0);
-    let task = dir.join("fine.toml");
-    let text = std::fs::read_to_string(root().join("examples/double_pendulum.toml"))
-        .unwrap()
-        .replace("../models/", &format!("{}/models/", root().display()));
-    std::fs::write(&task, format!("{text}\n[discretization]\ncontrol_points = 24\ninitial_guess = \"coarse/trajectory.csv\"\n"))
-        .unwrap();
+    let task = double_pendulum_task(
+        &dir,
+        "fine.toml",
+        "[discretization]\ncontrol_points = 24\ninitial_guess = \"coarse/trajectory.csv\"",
+    );
     let (code, _, stderr) = run(mintorque().args(["plan", "-q", "--no-plots", "--out"]).arg(dir.join("fine")).arg(&task));
     assert_eq!(code, 0, "{stderr}");
     let read = |p: &Path| -> serde_json::Value { serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap() };
@@ -187,4 +188,132 @@ fn built_in_humans_export_to_urdf_and_figure_files() {
     let (code, _, stderr) = run(mintorque().args(["figure", "--human", "octopus", "--out"]).arg(dir.join("x.urdf")));
     assert_ne!(code, 0);
     assert!(stderr.contains("sagittal"), "{stderr}");
+}
+
+// ---- The contract: overrides, exit codes, plan directories ----
+
+#[test]
+fn overrides_reach_the_resolved_task_so_simulate_can_reload_the_plan() {
+    let out = scratch("overrides");
+    let (code, _, stderr) = run(mintorque()
+        .args(["plan", "examples/pendulum.toml", "-q", "--no-plots", "--control-points", "9", "--solver", "auglag-bfgs", "--out"])
+        .arg(&out)
+        .current_dir(root()));
+    assert_eq!(code, 0, "{stderr}");
+    let resolved: toml::Table = std::fs::read_to_string(out.join("task.resolved.toml")).unwrap().parse().unwrap();
+    assert_eq!(resolved["discretization"]["control_points"].as_integer(), Some(9));
+    assert_eq!(resolved["solver"]["method"].as_str(), Some("auglag-bfgs"));
+    let (code, stdout, stderr) = run(mintorque().arg("simulate").arg(&out));
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stdout.contains("pivot"), "{stdout}");
+}
+
+#[test]
+fn the_filmstrip_follows_the_task_and_other_views_go_beside_it() {
+    let dir = scratch("filmstrip");
+    let task = double_pendulum_task(&dir, "task.toml", "[output]\nplots = false\nfilmstrip_view = \"top\"");
+    let out = dir.join("out");
+    let (code, _, stderr) = run(mintorque().args(["plan", "-q", "--out"]).arg(&out).arg(&task));
+    assert_eq!(code, 0, "{stderr}");
+    let own = std::fs::read_to_string(out.join("filmstrip.svg")).unwrap();
+    assert!(own.contains("top view"), "the task's view");
+    let (code, stdout, stderr) = run(mintorque().args(["view", "--filmstrip", "front"]).arg(&out).env("PATH", ""));
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stdout.contains("motion.html"), "{stdout}");
+    assert_eq!(std::fs::read_to_string(out.join("filmstrip.svg")).unwrap(), own, "not overwritten");
+    assert!(std::fs::read_to_string(out.join("filmstrip-front.svg")).unwrap().contains("front view"));
+    let (code, _, stderr) = run(mintorque().args(["view", "--filmstrip", "oblique"]).arg(&out).env("PATH", ""));
+    assert_eq!(code, 1);
+    assert!(stderr.contains("--filmstrip") && stderr.contains("side, front or top"), "{stderr}");
+}
+
+#[test]
+fn an_invalid_setting_exits_1_naming_the_field_and_writes_nothing() {
+    let dir = scratch("settings");
+    for (extra, field) in
+        [("[solver]\ntime_limit = -1", "solver.time_limit"), ("[solver]\nmax_iterations = 0", "solver.max_iterations")]
+    {
+        let task = double_pendulum_task(&dir, "task.toml", extra);
+        let (code, _, stderr) = run(mintorque().args(["plan", "-q", "--out"]).arg(dir.join("out")).arg(&task));
+        assert_eq!(code, 1, "{stderr}");
+        assert!(stderr.contains(field) && stderr.contains("task.toml"), "{stderr}");
+        assert!(!dir.join("out").exists(), "nothing written");
+        let (code, _, stderr) = run(mintorque().arg("simulate").arg(&task));
+        assert_eq!(code, 1, "{stderr}");
+    }
+}
+
+#[test]
+fn every_command_exits_0_1_or_3() {
+    let dir = scratch("codes");
+    let task = double_pendulum_task(&dir, "task.toml", "[solver]\nmax_iterations = 2");
+    let (code, stdout, stderr) = run(mintorque().arg("simulate").arg(&task));
+    assert_eq!(code, 3, "simulate of a plan that does not converge: {stderr}");
+    assert!(stdout.contains("NOT converged"), "{stdout}");
+    let (code, _, stderr) = run(mintorque().args(["simulate", "--steps", "0"]).arg(&task));
+    assert_eq!(code, 1);
+    assert!(stderr.contains("--steps"), "{stderr}");
+    let (code, _, _) = run(mintorque().args(["plan", "--no-such-option"]));
+    assert_eq!(code, 1, "a bad argument is bad input");
+    let (code, _, _) = run(mintorque().arg("--help"));
+    assert_eq!(code, 0);
+    let file = dir.join("a-file");
+    std::fs::write(&file, "x").unwrap();
+    let (code, _, stderr) =
+        run(mintorque().args(["plan", "examples/pendulum.toml", "-q", "--out"]).arg(&file).current_dir(root()));
+    assert_eq!(code, 1);
+    assert!(stderr.contains("a-file") && stderr.contains("not a directory"), "{stderr}");
+    assert!(!stderr.contains("os error"), "{stderr}");
+}
+
+#[test]
+fn dynamics_never_prints_null_for_a_non_finite_result() {
+    let dir = scratch("dynamics-nan");
+    let states = dir.join("huge.json");
+    let text = r#"{"joints":[{"name":"shoulder"},{"name":"elbow"}],"states":[{"q":[0,0],"v":[0,0],"a":[0,0]},{"q":[0,0],"v":[1e300,1e300],"a":[0,0]}]}"#;
+    std::fs::write(&states, text).unwrap();
+    let (code, stdout, stderr) =
+        run(mintorque().arg("dynamics").arg(root().join("models/double_pendulum.urdf")).arg("--states").arg(&states));
+    assert_eq!(code, 1, "{stdout}");
+    assert!(!stdout.contains("null"), "{stdout}");
+    assert!(stderr.contains("huge.json") && stderr.contains("states[1]") && stderr.contains("not finite"), "{stderr}");
+}
+
+#[test]
+fn re_planning_leaves_nothing_of_the_old_plan_and_a_second_writer_is_refused() {
+    let out = scratch("replan").join("out");
+    let plan = |extra: &[&str]| {
+        run(mintorque().args(["plan", "examples/pendulum.toml", "-q", "--out"]).arg(&out).args(extra).current_dir(root()))
+    };
+    assert_eq!(plan(&[]).0, 0);
+    assert!(out.join("q.png").exists());
+    assert_eq!(plan(&["--no-plots"]).0, 0);
+    assert!(!out.join("q.png").exists() && !out.join("tau.svg").exists(), "old plots left behind");
+    let held = mintorque::plan_dir::lock(&out).unwrap();
+    let (code, _, stderr) = plan(&[]);
+    drop(held);
+    assert_eq!(code, 1);
+    assert!(stderr.contains(&out.display().to_string()) && stderr.contains("another mintorque"), "{stderr}");
+}
+
+#[test]
+fn a_plan_killed_at_random_times_leaves_a_whole_plan() {
+    let out = scratch("kill").join("out");
+    let tasks = ["examples/pendulum.toml", "examples/double_pendulum.toml"];
+    let plan = |k: usize| mintorque().args(["plan", tasks[k % 2], "-q", "--out"]).arg(&out).current_dir(root()).spawn().unwrap();
+    let started = std::time::Instant::now();
+    assert!(plan(0).wait().unwrap().success());
+    let full = started.elapsed().as_micros() as u64;
+    let mut seed: u64 = 0x9e37_79b9_7f4a_7c15;
+    for k in 1..16 {
+        seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        let mut child = plan(k);
+        std::thread::sleep(std::time::Duration::from_micros((seed >> 33) % (full + full / 4)));
+        let _ = child.kill();
+        let _ = child.wait();
+        let loaded = mintorque::plan_dir::load(&out).unwrap_or_else(|e| panic!("after kill {k}: {e}"));
+        assert!(["compound_pendulum", "double_pendulum"].contains(&loaded.record.model_name.as_str()));
+        let on_disk = std::fs::read_dir(&loaded.dir).unwrap().count();
+        assert_eq!(on_disk, loaded.files.len() + 1, "after kill {k}: files beside the manifest's");
+    }
 }

@@ -5,10 +5,11 @@
 
 use mintorque::model::human::{self, HumanParams, Structure};
 use mintorque::model::{Body, Joint, JointKind, JointLimits, Model, Passive};
+use mintorque::plan_dir::load as load_plan_dir;
 use mintorque::report::ergonomics::{ergonomics, intervals_above, text_table};
 use mintorque::report::export::{export, Format};
 use mintorque::report::plots::{plot_svgs, plots};
-use mintorque::report::record::{load_plan_dir, ContactRecord, PlanRecord, SampleRecord, FORMAT};
+use mintorque::report::record::{ContactRecord, PlanRecord, SampleRecord, FORMAT};
 use mintorque::spatial::{axis_angle, Inertia, Mat3, Transform, Vec3};
 use std::collections::BTreeMap;
 use std::f64::consts::PI;

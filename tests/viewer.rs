@@ -4,10 +4,11 @@
 
 use mintorque::dynamics::{kinematics, Data};
 use mintorque::model::human::{HumanParams, Structure};
-use mintorque::model::{figure, urdf, Model};
+use mintorque::model::{urdf, Model};
+use mintorque::plan_dir::{self, PlanContents, WriteOptions};
 use mintorque::report::filmstrip::{filmstrip_png, filmstrip_svg, View};
 use mintorque::report::record::{ContactRecord, PlanRecord, SampleRecord, FORMAT};
-use mintorque::report::viewer::{embedded_data, file_url, motion_html, write_view_files, VIEW_FILES};
+use mintorque::report::viewer::{embedded_data, file_url, motion_html, VIEW_FILES};
 use std::path::{Path, PathBuf};
 
 fn repo() -> PathBuf {
@@ -205,11 +206,14 @@ fn filmstrip_png_is_a_png() {
     assert!(png.len() > 1000);
 }
 
-/// Writes a plan directory as `mintorque plan` would (the files `view` reads).
+/// Writes a plan directory of a hand-made record through `plan_dir`, as `mintorque plan` would.
 fn write_plan_dir(dir: &Path, model: &Model, rec: &PlanRecord) {
-    std::fs::create_dir_all(dir).unwrap();
-    std::fs::write(dir.join("plan.json"), serde_json::to_vec_pretty(rec).unwrap()).unwrap();
-    std::fs::write(dir.join("model.figure.toml"), figure::to_toml(model)).unwrap();
+    plan_dir::write(dir, &PlanContents::from_record(model.clone(), rec.clone()), &WriteOptions::default()).unwrap();
+}
+
+/// (Re)generates the views of a plan directory, as `mintorque view DIR` does.
+fn write_view_files(dir: &Path) -> plan_dir::Result<PathBuf> {
+    plan_dir::write_views(dir, None)
 }
 
 fn scratch(name: &str) -> PathBuf {
@@ -232,9 +236,24 @@ fn view_files_are_written_into_the_plan_directory() {
         .map(|e| e.unwrap().file_name())
         .filter(|n| n.to_string_lossy().starts_with('.'))
         .collect();
-    assert!(leftovers.is_empty(), "staging files left behind: {leftovers:?}");
-    // Again, over the old files.
+    assert!(leftovers.is_empty(), "hidden files inside the plan: {leftovers:?}");
+    let beside: Vec<_> = std::fs::read_dir(dir.parent().unwrap())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.contains("view-files") && (n.contains("staging") || n.contains(".old")))
+        .collect();
+    assert!(beside.is_empty(), "staging directories left behind: {beside:?}");
+    // Again, over the old files; another view goes beside the plan's own filmstrip, not over it.
     write_view_files(&dir).unwrap();
+    let side = std::fs::read(dir.join("filmstrip.svg")).unwrap();
+    plan_dir::write_views(&dir, Some(View::Front)).unwrap();
+    assert_eq!(std::fs::read(dir.join("filmstrip.svg")).unwrap(), side, "the plan's filmstrip is kept");
+    let front = std::fs::read_to_string(dir.join("filmstrip-front.svg")).unwrap();
+    assert_ne!(front.as_bytes(), &side[..]);
+    assert!(dir.join("filmstrip-front.png").exists());
+    // Both belong to the plan: it loads, every file checked.
+    let loaded = plan_dir::load(&dir).unwrap();
+    assert!(loaded.manifest.files.contains_key("filmstrip-front.svg"));
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
@@ -244,13 +263,14 @@ fn a_record_that_does_not_fit_its_model_is_an_error_not_a_panic() {
     let mut rec = record(&model, 1.0, 5, 1.0, &[]);
     rec.samples[3].q.pop();
     let dir = scratch("bad-record");
-    write_plan_dir(&dir, &model, &rec);
-    let err = write_view_files(&dir).unwrap_err().to_string();
+    let err = plan_dir::write(&dir, &PlanContents::from_record(model.clone(), rec.clone()), &WriteOptions::default())
+        .unwrap_err()
+        .to_string();
     assert!(err.contains("samples[3]"), "{err}");
+    assert!(!dir.exists(), "nothing is written for a record that does not fit its model");
     // Drawing it anyway (as a library caller might) still does not panic.
     let _ = motion_html(&model, &rec, None);
     let _ = filmstrip_svg(&model, &rec, 3, View::Side);
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 /// Pages for `scripts/browser-test.sh` to open, from these hand-made records: a shapeless double pendulum

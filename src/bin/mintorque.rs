@@ -1,11 +1,14 @@
 //! The `mintorque` command: a thin shell over the library. It parses arguments, calls the library and
-//! prints; every error is reported with its chain and a non-zero exit.
+//! prints; every error is reported with its chain. Exit codes, the same for every command: 0 success (a
+//! converged plan), 1 bad input or settings (the message names the file, field or option), 3 a plan that
+//! did not converge or a result that is not finite.
 
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 use mintorque::dynamics::{batch::StatesFile, bench};
 use mintorque::plan::{self, task::Task, SolverKind};
-use mintorque::report::{self, Summary};
+use mintorque::plan_dir::{self, overrides::Overrides, PlanContents, WriteOptions};
+use mintorque::report;
 use mintorque::spatial::Vec3;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -55,9 +58,10 @@ enum Command {
     View {
         /// The plan directory.
         dir: PathBuf,
-        /// The filmstrip's camera: side (looking along +y), front or top.
-        #[arg(long, default_value = "side")]
-        filmstrip: String,
+        /// Also draw the filmstrip from this camera — side (looking along +y), front or top — as
+        /// filmstrip-VIEW.svg/.png beside the plan's own.
+        #[arg(long)]
+        filmstrip: Option<String>,
     },
     /// Write a figure — a built-in human or a model file — as URDF (for any URDF viewer) or as a figure
     /// file (TOML) to edit.
@@ -84,9 +88,9 @@ enum Command {
     Simulate {
         /// A plan directory (written by `plan`), or a task file to plan first.
         plan: PathBuf,
-        /// RK4 steps over the motion.
-        #[arg(long, default_value_t = 4000)]
-        steps: usize,
+        /// RK4 steps over the motion (at least 1).
+        #[arg(long, default_value_t = 4000, value_parser = clap::value_parser!(u64).range(1..))]
+        steps: u64,
     },
     /// Inverse dynamics, its derivatives, H(q) and forward dynamics of a model at the states of a file
     /// (the reference data's JSON format), printed as JSON in the file's joint order.
@@ -112,53 +116,39 @@ enum SolverArg {
     AuglagBfgs,
 }
 
-/// Exit code of a plan that did not converge (its results are still written, marked as such).
+/// Bad input or settings (named in the message), for every command.
+const BAD_INPUT: u8 = 1;
+/// A plan that did not converge (its results are still written, marked as such), or a non-finite result
+/// (nothing written).
 const NOT_CONVERGED: u8 = 3;
 
-/// Writes one file whole or not at all.
-fn write_one(path: &Path, bytes: Vec<u8>) -> Result<()> {
-    let parent = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    let file = path.file_name().and_then(|f| f.to_str()).context("--out must name a file")?;
-    Ok(report::write_files(parent, &[(file, bytes)])?)
+fn exit(ok: bool) -> ExitCode {
+    if ok {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(NOT_CONVERGED)
+    }
 }
 
 fn load_model(path: &Path) -> Result<mintorque::Model> {
     Ok(mintorque::model::load_any(path)?)
 }
 
-fn run_plan(
-    task_path: &Path,
-    out: &Path,
-    solver: Option<SolverArg>,
-    control_points: Option<usize>,
-    quiet: bool,
-    no_plots: bool,
-) -> Result<bool> {
-    let mut task = Task::load(task_path)?;
-    if let Some(s) = solver {
-        task.solver = match s {
-            SolverArg::Structured => SolverKind::Structured,
-            SolverArg::Newton => SolverKind::Newton,
-            SolverArg::AuglagBfgs => SolverKind::AuglagBfgs,
-        };
-    }
-    if let Some(n) = control_points {
-        task.spec.n_ctrl = n;
-    }
-    let spec = &task.spec;
-    let terminal = std::io::stderr().is_terminal();
-    let bar = (!quiet && terminal).then(|| {
+/// A progress observer: a spinner on a terminal, a line a second otherwise, nothing with `quiet`.
+fn progress(quiet: bool) -> (Option<indicatif::ProgressBar>, impl FnMut(&mintorque::solve::Progress)) {
+    let bar = (!quiet && std::io::stderr().is_terminal()).then(|| {
         let b = indicatif::ProgressBar::new_spinner();
         b.set_style(indicatif::ProgressStyle::with_template("{spinner} {elapsed} {msg}").expect("valid template"));
         b
     });
+    let shown = bar.clone();
     let mut last_print = std::time::Instant::now();
-    let mut observer = |p: &mintorque::solve::Progress| {
+    let observer = move |p: &mintorque::solve::Progress| {
         let msg = format!(
             "iteration {:>4} (outer {:>2})  objective {:.6e}  violation {:.2e}  stationarity {:.2e}",
             p.iteration, p.outer_iteration, p.objective, p.violation, p.stationarity
         );
-        if let Some(b) = &bar {
+        if let Some(b) = &shown {
             b.set_message(msg);
             b.tick();
         } else if !quiet && last_print.elapsed().as_secs_f64() > 1.0 {
@@ -166,96 +156,159 @@ fn run_plan(
             last_print = std::time::Instant::now();
         }
     };
-    let planned = plan::plan(spec, task.solver, &task.settings, &mut observer)?;
+    (bar, observer)
+}
+
+/// Plans a task (overrides applied, settings checked), reporting why it did not converge if it did not.
+fn solve(task: &Task, quiet: bool) -> Result<plan::Plan> {
+    let (bar, mut observer) = progress(quiet);
+    let planned = plan::plan(&task.spec, task.solver, &task.settings, &mut observer)?;
     if let Some(b) = bar {
         b.finish_and_clear();
     }
-    let times = report::sample_times(spec.duration, task.file.output.sample_rate);
-    let samples = plan::sample(spec, &planned, &times)?;
-    let summary = Summary::new(spec, &planned, &samples);
-    let record = report::record::PlanRecord::new(spec, &planned, &samples);
-    let ergonomics = report::ergonomics::ergonomics(&spec.model, &record, &task.file.output.strength)?;
-    let mut summary_json = serde_json::to_value(&summary)?;
-    summary_json["ergonomics"] = serde_json::to_value(&ergonomics)?;
-    let resolved = toml::to_string_pretty(&task.resolved_file()).context("serialising the resolved task")?;
-    let mut files: Vec<(String, Vec<u8>)> = vec![
-        ("trajectory.csv".into(), report::export::csv::csv(&spec.model, &record).into_bytes()),
-        ("summary.json".into(), serde_json::to_string_pretty(&summary_json)?.into_bytes()),
-        ("task.resolved.toml".into(), resolved.into_bytes()),
-    ];
-    files.extend(report::record::plan_files(spec, &planned, &samples)?.into_iter().map(|(n, b)| (n.to_string(), b)));
-    if task.file.output.plots && !no_plots {
-        let guess: Vec<report::record::SampleRecord> =
-            plan::sample_initial_guess(spec, &times)?.iter().map(report::record::SampleRecord::from).collect();
-        files.extend(report::plots::plots(&spec.model, &record, Some(&guess))?);
+    if !planned.converged() {
+        eprintln!("error: the optimization did not converge: {}", planned.outcome.reason);
     }
-    // The views: the animation page and the filmstrip (side view), like the paper's figures.
-    {
-        use report::{filmstrip, viewer};
-        let summary_text = serde_json::to_string(&summary_json)?;
-        files.push((viewer::VIEW_FILES[0].into(), viewer::motion_html(&spec.model, &record, Some(&summary_text)).into_bytes()));
-        let frames = viewer::FILMSTRIP_FRAMES;
-        files.push((
-            viewer::VIEW_FILES[1].into(),
-            filmstrip::filmstrip_svg(&spec.model, &record, frames, filmstrip::View::Side).into_bytes(),
-        ));
-        files
-            .push((viewer::VIEW_FILES[2].into(), filmstrip::filmstrip_png(&spec.model, &record, frames, filmstrip::View::Side)?));
-    }
-    let named: Vec<(&str, Vec<u8>)> = files.iter().map(|(n, b)| (n.as_str(), b.clone())).collect();
-    report::write_files(out, &named)?;
+    Ok(planned)
+}
+
+fn run_plan(task_path: &Path, out: &Path, overrides: &Overrides, quiet: bool, no_plots: bool) -> Result<bool> {
+    let task = plan_dir::overrides::load_task(task_path, overrides)?;
+    let planned = solve(&task, quiet)?;
+    let contents = PlanContents::from_task(&task, &planned, no_plots)?;
+    plan_dir::write(out, &contents, &WriteOptions::default())?;
+    let (summary, ergonomics) = (contents.summary.as_ref().context("a planned task has a summary")?, &contents.ergonomics);
     if !quiet {
-        print!("{}", report::summary::text_table(&summary));
-        print!("{}", report::ergonomics::text_table(&ergonomics));
+        print!("{}", report::summary::text_table(summary));
+        ergonomics.iter().for_each(|e| print!("{}", report::ergonomics::text_table(e)));
         println!("results in {}", out.display());
     }
-    if !summary.converged {
-        eprintln!("error: the optimization did not converge: {}", summary.reason);
-        if let Some(v) = &summary.worst_violation_at_nodes {
-            eprintln!("       worst constraint: {} (scaled violation {:.2e})", v.constraint, v.value);
-        }
+    if let Some(v) = summary.worst_violation_at_nodes.as_ref().filter(|_| !summary.converged) {
+        eprintln!("       worst constraint: {} (scaled violation {:.2e})", v.constraint, v.value);
     }
     Ok(summary.converged)
+}
+
+fn run_export(dir: &Path, format: &str, out: Option<PathBuf>) -> Result<()> {
+    let format = report::export::Format::from_name(format)?;
+    let loaded = plan_dir::load(dir)?;
+    let (name, bytes) = report::export::export(&loaded.model, &loaded.record, format)?;
+    let path = match out {
+        Some(path) => {
+            plan_dir::write_file(&path, &bytes)?;
+            path
+        }
+        None => {
+            plan_dir::update(dir, &loaded.manifest.plan, vec![(name.clone(), bytes)], &WriteOptions::default())?;
+            dir.join(name)
+        }
+    };
+    println!("wrote {}", path.display());
+    Ok(())
+}
+
+fn run_figure(model: Option<PathBuf>, human: Option<String>, stature: f64, mass: f64, out: &Path) -> Result<()> {
+    use mintorque::model::{figure, human as jack, urdf_export};
+    let model = match (model, human) {
+        (Some(path), None) => load_model(&path)?,
+        (None, Some(name)) => {
+            jack::Structure::from_name(&name)?.build(jack::HumanParams { stature_m: stature, mass_kg: mass })?
+        }
+        _ => anyhow::bail!("give a model file or --human NAME"),
+    };
+    let text = match out.extension().and_then(|e| e.to_str()) {
+        Some("urdf") | Some("xml") => urdf_export::to_urdf(&model),
+        Some("toml") => figure::to_toml(&model),
+        _ => anyhow::bail!("{}: the output must end in .urdf or .toml", out.display()),
+    };
+    plan_dir::write_file(out, text.as_bytes())?;
+    println!("wrote {} ({} joints)", out.display(), model.nv());
+    Ok(())
+}
+
+/// Simulates a plan directory's plan, or a task planned first; false when that plan did not converge.
+fn run_simulate(path: &Path, steps: u64) -> Result<bool> {
+    let (task, x, status, converged) = if path.is_dir() {
+        let (loaded, task, x) = plan_dir::load_task(path)?;
+        let converged = loaded.record.converged;
+        (task, x, format!("plan of {}{}", path.display(), if converged { "" } else { " (NOT converged)" }), converged)
+    } else {
+        let task = plan_dir::overrides::load_task(path, &Overrides::default())?;
+        let planned = solve(&task, true)?;
+        let status = if planned.converged() { "plan converged" } else { "plan NOT converged" };
+        let converged = planned.converged();
+        (task, planned.x, status.to_string(), converged)
+    };
+    let steps = usize::try_from(steps).context("--steps: too large")?;
+    let sim = plan::simulate::simulate_x(&task.spec, &x, steps)?;
+    println!("{status}; forward simulation with {steps} RK4 steps of {:.2e} s", sim.step);
+    for (j, d) in task.spec.model.joints[1..].iter().zip(&sim.max_drift) {
+        let (v, unit) = if j.kind == mintorque::model::JointKind::Prismatic { (*d * 1e3, "mm") } else { (d.to_degrees(), "°") };
+        println!("  {:<16} max drift {v:.4} {unit}", j.name);
+    }
+    Ok(converged)
+}
+
+/// The first non-finite number of a state's results, as `quantity[index]`.
+fn non_finite_result(r: &mintorque::dynamics::batch::StateResult) -> Option<String> {
+    let first = |name: &str, v: &[f64]| plan_dir::finite::first_non_finite(v).map(|(i, x)| format!("{name}[{i}] = {x}"));
+    let rows = |name: &str, m: &[Vec<f64>]| m.iter().enumerate().find_map(|(i, row)| first(&format!("{name}[{i}]"), row));
+    first("tau", &r.tau)
+        .or_else(|| rows("dtau_dq", &r.dtau_dq))
+        .or_else(|| rows("dtau_dv", &r.dtau_dv))
+        .or_else(|| rows("M", &r.m))
+        .or_else(|| r.ddq.as_deref().and_then(|a| first("ddq", a)))
+        .or_else(|| first("root_wrench", &r.root_wrench))
+}
+
+fn run_dynamics(model: &Path, states: Option<PathBuf>, gravity: Option<Vec<f64>>, do_bench: bool) -> Result<()> {
+    let model = load_model(model)?;
+    let file = states.as_deref().map(|p| StatesFile::load(p, &model)).transpose()?;
+    let g = match (&gravity, file.as_ref().and_then(|f| f.gravity)) {
+        (Some(g), _) => {
+            anyhow::ensure!(g.iter().all(|x| x.is_finite()), "--gravity: must be three finite numbers (m/s²)");
+            Vec3::new(g[0], g[1], g[2])
+        }
+        (None, Some(g)) => g,
+        (None, None) => model.gravity,
+    };
+    if do_bench {
+        println!("{}", serde_json::to_string_pretty(&bench::bench(&model, &g, 1000))?);
+        return Ok(());
+    }
+    let (file, path) = (file.context("--states is required")?, states.unwrap_or_default());
+    let results = file.evaluate(&model, &g);
+    if let Some((k, what)) = results.iter().enumerate().find_map(|(k, r)| non_finite_result(r).map(|w| (k, w))) {
+        anyhow::bail!("{}: states[{k}]: the result is not finite: {what} (nothing printed)", path.display());
+    }
+    let json =
+        serde_json::json!({ "model": model.name, "joints": file.joint_names, "gravity": [g.x, g.y, g.z], "states": results });
+    println!("{}", serde_json::to_string_pretty(&json)?);
+    Ok(())
 }
 
 fn run(cli: Cli) -> Result<ExitCode> {
     match cli.command {
         Command::Plan { task, out, solver, control_points, quiet, no_plots } => {
-            let converged = run_plan(&task, &out, solver, control_points, quiet, no_plots)?;
-            Ok(if converged { ExitCode::SUCCESS } else { ExitCode::from(NOT_CONVERGED) })
+            let solver = solver.map(|s| match s {
+                SolverArg::Structured => SolverKind::Structured,
+                SolverArg::Newton => SolverKind::Newton,
+                SolverArg::AuglagBfgs => SolverKind::AuglagBfgs,
+            });
+            Ok(exit(run_plan(&task, &out, &Overrides { solver, control_points }, quiet, no_plots)?))
         }
-        Command::Export { dir, format, out } => {
-            let format = report::export::Format::from_name(&format)?;
-            let (model, record) = report::record::load_plan_dir(&dir)?;
-            let (name, bytes) = report::export::export(&model, &record, format)?;
-            let path = out.unwrap_or_else(|| dir.join(&name));
-            write_one(&path, bytes)?;
-            println!("wrote {}", path.display());
-            Ok(ExitCode::SUCCESS)
-        }
+        Command::Export { dir, format, out } => run_export(&dir, &format, out).map(|()| ExitCode::SUCCESS),
         Command::View { dir, filmstrip } => {
-            let view: report::filmstrip::View = filmstrip.parse().map_err(anyhow::Error::msg)?;
-            report::viewer::write_view_files_with(&dir, view)?;
-            report::viewer::open_in_browser(&dir.join(report::viewer::VIEW_FILES[0]));
+            let view = filmstrip
+                .map(|v| v.parse::<report::filmstrip::View>())
+                .transpose()
+                .map_err(|m| anyhow::anyhow!("--filmstrip: {m}"))?;
+            let page = plan_dir::write_views(&dir, view)?;
+            report::viewer::open_in_browser(&page);
             Ok(ExitCode::SUCCESS)
         }
         Command::Figure { model, human, stature, mass, out } => {
-            use mintorque::model::{figure, human as jack, urdf_export};
-            let model = match (model, human) {
-                (Some(path), None) => load_model(&path)?,
-                (None, Some(name)) => {
-                    jack::Structure::from_name(&name)?.build(jack::HumanParams { stature_m: stature, mass_kg: mass })?
-                }
-                _ => anyhow::bail!("give a model file or --human NAME"),
-            };
-            let text = match out.extension().and_then(|e| e.to_str()) {
-                Some("urdf") | Some("xml") => urdf_export::to_urdf(&model),
-                Some("toml") => figure::to_toml(&model),
-                _ => anyhow::bail!("{}: the output must end in .urdf or .toml", out.display()),
-            };
-            write_one(&out, text.into_bytes())?;
-            println!("wrote {} ({} joints)", out.display(), model.nv());
-            Ok(ExitCode::SUCCESS)
+            run_figure(model, human, stature, mass, &out).map(|()| ExitCode::SUCCESS)
         }
         Command::Examples => {
             for e in mintorque::plan::examples::ALL {
@@ -264,63 +317,35 @@ fn run(cli: Cli) -> Result<ExitCode> {
             println!("\nrun one with: mintorque plan examples/NAME.toml --out out/NAME");
             Ok(ExitCode::SUCCESS)
         }
-        Command::Simulate { plan: path, steps } => {
-            let (task, x, status) = if path.is_dir() {
-                let (task, x) = report::record::load_plan_task(&path)?;
-                (task, x, format!("plan of {}", path.display()))
-            } else {
-                let task = Task::load(&path)?;
-                let planned = plan::plan(&task.spec, task.solver, &task.settings, &mut |_| {})?;
-                let status = if planned.converged() { "plan converged" } else { "plan NOT converged" };
-                (task, planned.x, status.to_string())
-            };
-            let sim = plan::simulate::simulate_x(&task.spec, &x, steps)?;
-            println!("{status}; forward simulation with {steps} RK4 steps of {:.2e} s", sim.step);
-            for (j, d) in task.spec.model.joints[1..].iter().zip(&sim.max_drift) {
-                let (v, unit) =
-                    if j.kind == mintorque::model::JointKind::Prismatic { (*d * 1e3, "mm") } else { (d.to_degrees(), "°") };
-                println!("  {:<16} max drift {v:.4} {unit}", j.name);
-            }
-            Ok(ExitCode::SUCCESS)
-        }
-        Command::Dynamics { model, states, gravity, bench: do_bench } => {
-            let model = load_model(&model)?;
-            let file = match &states {
-                Some(p) => Some(StatesFile::load(p, &model)?),
-                None => None,
-            };
-            let g = match (&gravity, file.as_ref().and_then(|f| f.gravity)) {
-                (Some(g), _) => {
-                    anyhow::ensure!(g.iter().all(|x| x.is_finite()), "--gravity: must be three finite numbers (m/s²)");
-                    Vec3::new(g[0], g[1], g[2])
-                }
-                (None, Some(g)) => g,
-                (None, None) => model.gravity,
-            };
-            let out = if do_bench {
-                serde_json::to_string_pretty(&bench::bench(&model, &g, 1000))?
-            } else {
-                let file = file.context("--states is required")?;
-                let results = file.evaluate(&model, &g);
-                serde_json::to_string_pretty(&serde_json::json!({
-                    "model": model.name,
-                    "joints": file.joint_names,
-                    "gravity": [g.x, g.y, g.z],
-                    "states": results,
-                }))?
-            };
-            println!("{out}");
-            Ok(ExitCode::SUCCESS)
+        Command::Simulate { plan: path, steps } => Ok(exit(run_simulate(&path, steps)?)),
+        Command::Dynamics { model, states, gravity, bench } => {
+            run_dynamics(&model, states, gravity, bench).map(|()| ExitCode::SUCCESS)
         }
     }
 }
 
+/// The exit code of an error: 3 for a result that is not finite, 1 for everything else.
+fn exit_code(e: &anyhow::Error) -> u8 {
+    match e.downcast_ref::<plan_dir::Error>() {
+        Some(plan_dir::Error::NonFinite { .. }) => NOT_CONVERGED,
+        _ => BAD_INPUT,
+    }
+}
+
 fn main() -> ExitCode {
-    match run(Cli::parse()) {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        // --help and --version print to stdout and succeed; a bad argument is bad input.
+        Err(e) => {
+            let _ = e.print();
+            return if e.use_stderr() { ExitCode::from(BAD_INPUT) } else { ExitCode::SUCCESS };
+        }
+    };
+    match run(cli) {
         Ok(code) => code,
         Err(e) => {
             eprintln!("error: {e:#}");
-            ExitCode::FAILURE
+            ExitCode::from(exit_code(&e))
         }
     }
 }

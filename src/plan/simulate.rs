@@ -6,7 +6,7 @@
 
 use super::{sample_x, NodeValues, Plan, Spec};
 use crate::dynamics::{aba::aba, kinematics, Data};
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::spatial::Force;
 
 #[derive(Clone, Debug, serde::Serialize)]
@@ -53,9 +53,12 @@ pub fn simulate(spec: &Spec, plan: &Plan, steps: usize) -> Result<Simulation> {
     simulate_x(spec, &plan.x, steps)
 }
 
-/// [`simulate`] for the solver unknowns `x` of a plan (e.g. reloaded from a plan directory).
+/// [`simulate`] for the solver unknowns `x` of a plan (e.g. reloaded from a plan directory). `steps` must
+/// be at least 1; a state that stops being finite (an unstable motion) is an error naming step and joint.
 pub fn simulate_x(spec: &Spec, x: &[f64], steps: usize) -> Result<Simulation> {
-    let steps = steps.max(1);
+    if steps == 0 {
+        return Err(Error::input("simulate", "steps", "must be at least 1"));
+    }
     let h = spec.duration / steps as f64;
     // The planned torques at every RK4 stage time (each step needs t, t + h/2, t + h).
     let stage_times: Vec<f64> = (0..=2 * steps).map(|k| (k as f64 * h / 2.0).min(spec.duration)).collect();
@@ -80,6 +83,7 @@ pub fn simulate_x(spec: &Spec, x: &[f64], steps: usize) -> Result<Simulation> {
             q[i] += h / 6.0 * (v[i] + 2.0 * v2[i] + 2.0 * v3[i] + v4[i]);
             v[i] += h / 6.0 * (a1[i] + 2.0 * a2[i] + 2.0 * a3[i] + a4[i]);
         }
+        check_state(spec, step, p2.t, &q, &v)?;
         times.push(p2.t);
         q_simulated.push(q.clone());
         q_planned.push(p2.q.clone());
@@ -96,4 +100,20 @@ pub fn simulate_x(spec: &Spec, x: &[f64], steps: usize) -> Result<Simulation> {
         max_drift,
         worst_drift,
     })
+}
+
+/// The simulated state after `step` must be finite.
+fn check_state(spec: &Spec, step: usize, t: f64, q: &[f64], v: &[f64]) -> Result<()> {
+    let bad =
+        q.iter().position(|x| !x.is_finite()).map(|i| ("q", i)).or(v.iter().position(|x| !x.is_finite()).map(|i| ("qd", i)));
+    match bad {
+        Some((quantity, i)) => Err(Error::input(
+            "simulate",
+            format!("step {step} (t = {t:.4} s), joint \"{}\"", spec.model.joints[i + 1].name),
+            format!(
+                "the simulated {quantity} is not finite: the motion is unstable under the planned torques (try more --steps)"
+            ),
+        )),
+        None => Ok(()),
+    }
 }

@@ -6,12 +6,11 @@
 use super::record::PlanRecord;
 use super::scene::{self, JointMarker};
 use crate::dynamics::{kinematics, Data};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::model::{Model, Shape};
 pub use crate::plan::task::View;
 use crate::spatial::Vec3;
 use std::fmt::Write as _;
-use std::sync::{Arc, OnceLock};
 
 /// Panel height the figure is scaled to (px), and the widest a panel may get.
 const FIGURE_HEIGHT: f64 = 240.0;
@@ -453,31 +452,5 @@ fn xml_escape(s: &str) -> String {
 /// The filmstrip as PNG (rendered at twice the SVG's pixel size, so it stays sharp on high-density screens
 /// and in print). Text uses the system's fonts; without any the labels are left out.
 pub fn filmstrip_png(model: &Model, record: &PlanRecord, frames: usize, view: View) -> Result<Vec<u8>> {
-    svg_to_png(&filmstrip_svg(model, record, frames, view), 2.0)
-}
-
-/// Renders SVG text to PNG bytes at `zoom` pixels per SVG pixel.
-pub fn svg_to_png(svg: &str, zoom: f32) -> Result<Vec<u8>> {
-    use resvg::{tiny_skia, usvg};
-    let fail = |what: &str, e: String| Error::input("filmstrip", what, e);
-    let options = usvg::Options { fontdb: system_fonts(), ..usvg::Options::default() };
-    let tree = usvg::Tree::from_str(svg, &options).map_err(|e| fail("svg", e.to_string()))?;
-    let size = tree.size().to_int_size().scale_by(zoom).ok_or_else(|| fail("png", "empty picture".into()))?;
-    let mut pixmap =
-        tiny_skia::Pixmap::new(size.width(), size.height()).ok_or_else(|| fail("png", format!("cannot allocate {size:?}")))?;
-    resvg::render(&tree, tiny_skia::Transform::from_scale(zoom, zoom), &mut pixmap.as_mut());
-    pixmap.encode_png().map_err(|e| fail("png", e.to_string()))
-}
-
-/// The system's fonts, looked up once per process (scanning them takes longer than rendering).
-fn system_fonts() -> Arc<resvg::usvg::fontdb::Database> {
-    static FONTS: OnceLock<Arc<resvg::usvg::fontdb::Database>> = OnceLock::new();
-    FONTS
-        .get_or_init(|| {
-            let mut db = resvg::usvg::fontdb::Database::new();
-            db.load_system_fonts();
-            db.set_sans_serif_family("DejaVu Sans");
-            Arc::new(db)
-        })
-        .clone()
+    super::render::svg_to_png(&filmstrip_svg(model, record, frames, view), 2.0, "filmstrip")
 }

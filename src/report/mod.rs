@@ -1,12 +1,13 @@
-//! What a plan leaves behind: `trajectory.csv`, `summary.json` and the fully resolved task, written whole
-//! or not at all (every file goes to a temporary directory first and is renamed into place only when all
-//! of them were written).
+//! Pure renderers of a loaded plan ([`record::PlanRecord`] and its model): the summary, plots, filmstrip,
+//! 3D viewer, exports and ergonomics, each returning text or bytes. Which files a plan directory holds, and
+//! writing them, is `crate::plan_dir`'s.
 
 pub mod ergonomics;
 pub mod export;
 pub mod filmstrip;
 pub mod plots;
 pub mod record;
+pub mod render;
 pub mod scene;
 pub mod summary;
 pub mod viewer;
@@ -15,7 +16,6 @@ pub use summary::Summary;
 
 use crate::error::{Error, Result};
 use crate::model::JointKind;
-use std::path::{Path, PathBuf};
 
 /// Sample times `0, 1/rate, …, T` (the end always included).
 pub fn sample_times(duration: f64, rate: f64) -> Vec<f64> {
@@ -50,25 +50,4 @@ pub(crate) fn units(kind: JointKind) -> ([&'static str; 4], f64) {
         JointKind::Prismatic => (["q_m", "qd_m_s", "qdd_m_s2", "tau_N"], 1.0),
         _ => (["q_deg", "qd_deg_s", "qdd_deg_s2", "tau_Nm"], 180.0 / std::f64::consts::PI),
     }
-}
-
-/// Writes `files` (name, contents) into `dir` whole or not at all.
-pub fn write_files(dir: &Path, files: &[(&str, Vec<u8>)]) -> Result<()> {
-    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
-    let staging: PathBuf = dir.join(format!(".mintorque-staging-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&staging);
-    std::fs::create_dir(&staging).map_err(|e| Error::io(&staging, e))?;
-    let result = (|| {
-        for (name, bytes) in files {
-            let p = staging.join(name);
-            std::fs::write(&p, bytes).map_err(|e| Error::io(&p, e))?;
-        }
-        for (name, _) in files {
-            let (from, to) = (staging.join(name), dir.join(name));
-            std::fs::rename(&from, &to).map_err(|e| Error::io(&to, e))?;
-        }
-        Ok(())
-    })();
-    let _ = std::fs::remove_dir_all(&staging);
-    result
 }

@@ -9,8 +9,6 @@ use crate::error::{Error, Result};
 use crate::model::{JointKind, Model};
 use plotters::element::DashedPathElement;
 use plotters::prelude::*;
-use resvg::{tiny_skia, usvg};
-use std::sync::{Arc, OnceLock};
 
 /// Width of one panel and height of one row of panels (SVG pixels).
 const PANEL_WIDTH: u32 = 520;
@@ -89,7 +87,7 @@ impl Quantity {
 pub fn plots(model: &Model, record: &PlanRecord, guess: Option<&[SampleRecord]>) -> Result<Vec<(String, Vec<u8>)>> {
     let mut files = Vec::new();
     for (name, svg) in plot_svgs(model, record, guess)? {
-        let png = svg_to_png(&svg)?;
+        let png = super::render::svg_to_png(&svg, PNG_SCALE, "plots")?;
         let stem = name.trim_end_matches(".svg").to_string();
         files.push((name, svg.into_bytes()));
         files.push((format!("{stem}.png"), png));
@@ -311,39 +309,4 @@ fn contact_plot(record: &PlanRecord) -> Result<String> {
         root.present().map_err(drawing_error)?;
     }
     Ok(svg)
-}
-
-/// The system's fonts, loaded once; the generic `sans-serif` that plotters writes is pointed at an
-/// installed sans face (fontdb's own default, Arial, is rarely installed on Linux).
-fn fonts() -> Arc<usvg::fontdb::Database> {
-    static FONTS: OnceLock<Arc<usvg::fontdb::Database>> = OnceLock::new();
-    FONTS
-        .get_or_init(|| {
-            let mut db = usvg::fontdb::Database::new();
-            db.load_system_fonts();
-            let families: Vec<String> = db.faces().flat_map(|f| f.families.iter().map(|(name, _)| name.clone())).collect();
-            let preferred = ["DejaVu Sans", "Liberation Sans", "Noto Sans", "Arial", "Helvetica"];
-            let sans = preferred
-                .iter()
-                .find(|p| families.iter().any(|f| f == *p))
-                .map(|p| p.to_string())
-                .or_else(|| families.first().cloned());
-            if let Some(family) = sans {
-                db.set_sans_serif_family(family);
-            }
-            Arc::new(db)
-        })
-        .clone()
-}
-
-/// Renders an SVG to PNG at [`PNG_SCALE`] times its size, on its own background.
-pub fn svg_to_png(svg: &str) -> Result<Vec<u8>> {
-    let options = usvg::Options { fontdb: fonts(), ..usvg::Options::default() };
-    let tree = usvg::Tree::from_str(svg, &options).map_err(|e| Error::input("plots", "svg", e.to_string()))?;
-    let size =
-        tree.size().to_int_size().scale_by(PNG_SCALE).ok_or_else(|| Error::input("plots", "png", "the picture has no size"))?;
-    let mut pixmap = tiny_skia::Pixmap::new(size.width(), size.height())
-        .ok_or_else(|| Error::input("plots", "png", "the picture is too large"))?;
-    resvg::render(&tree, tiny_skia::Transform::from_scale(PNG_SCALE, PNG_SCALE), &mut pixmap.as_mut());
-    pixmap.encode_png().map_err(|e| Error::input("plots", "png", e.to_string()))
 }

@@ -2,14 +2,11 @@
 //! inlined, nothing is fetched). Rust does the kinematics: the page receives every body's world placement
 //! at every sample and only interpolates between them, so what it shows is exactly what was planned.
 //!
-//! Also the `mintorque view DIR` helpers: [`write_view_files`] (re)generates the page and the filmstrips of
-//! a plan directory, [`open_in_browser`] shows the page.
+//! Also [`open_in_browser`], which shows the page (`mintorque view DIR`).
 
-use super::filmstrip::{filmstrip_png, filmstrip_svg, View};
-use super::record::{load_plan_dir, PlanRecord};
+use super::record::PlanRecord;
 use super::scene;
 use crate::dynamics::{kinematics, Data};
-use crate::error::{Error, Result};
 use crate::model::{Model, Shape};
 use crate::spatial::{rotation_from_z, Transform, Vec3};
 use serde_json::{json, Value};
@@ -22,7 +19,7 @@ const THREE_LICENSE: &str = include_str!("../../assets/three.LICENSE");
 /// The page: markup, style and the script that builds the scene from the embedded data.
 const TEMPLATE: &str = include_str!("viewer.html");
 
-/// Frames in the filmstrips that [`write_view_files`] writes (the paper's figures show 6 to 10 poses).
+/// Frames in a plan directory's filmstrips (the paper's figures show 6 to 10 poses).
 pub const FILMSTRIP_FRAMES: usize = 8;
 
 /// The page for `record`. `summary_json` (the plan's `summary.json`, if at hand) is shown beside the
@@ -206,31 +203,8 @@ pub fn embedded_data(html: &str) -> Option<Value> {
     serde_json::from_str(&html[start..end]).ok()
 }
 
-/// The files that [`write_view_files`] writes into a plan directory.
+/// The page and the filmstrip of a plan directory, as `crate::plan_dir` names them.
 pub const VIEW_FILES: [&str; 3] = ["motion.html", "filmstrip.svg", "filmstrip.png"];
-
-/// (Re)generates `motion.html`, `filmstrip.svg` and `filmstrip.png` in plan directory `dir` from its
-/// `plan.json`, `model.figure.toml` and (if present) `summary.json`. The files are written to a staging
-/// directory and renamed into place, so a reader never sees half a file.
-pub fn write_view_files(dir: &Path) -> Result<()> {
-    write_view_files_with(dir, View::Side)
-}
-
-/// [`write_view_files`] with the filmstrip seen from `view`.
-pub fn write_view_files_with(dir: &Path, view: View) -> Result<()> {
-    let (model, record) = load_plan_dir(dir)?;
-    scene::check_record(&model, &record).map_err(|m| Error::input(dir.join("plan.json").display().to_string(), "samples", m))?;
-    let summary_path = dir.join("summary.json");
-    let summary = match std::fs::read_to_string(&summary_path) {
-        Ok(s) => Some(s),
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => None,
-        Err(e) => return Err(Error::io(summary_path, e)),
-    };
-    let html = motion_html(&model, &record, summary.as_deref());
-    let svg = filmstrip_svg(&model, &record, FILMSTRIP_FRAMES, view);
-    let png = filmstrip_png(&model, &record, FILMSTRIP_FRAMES, view)?;
-    super::write_files(dir, &[(VIEW_FILES[0], html.into_bytes()), (VIEW_FILES[1], svg.into_bytes()), (VIEW_FILES[2], png)])
-}
 
 /// Opens `path` in the desktop's browser (`xdg-open`, `open` on macOS, `start` on Windows). Returns whether
 /// a launcher accepted it; when none did (a server, a container) it prints the file's URL instead so the

@@ -1,7 +1,7 @@
 //! A planned motion in the formats other tools read: BVH (animation packages, Blender), glTF 2.0 binary
 //! (viewers, game engines, the web), OpenSim's `.mot` (biomechanics) and CSV (spreadsheets, scripts).
 //! Each exporter takes the model and the [`PlanRecord`] of a plan directory and returns the file's name
-//! and bytes; writing them is the caller's business (see [`super::write_files`]).
+//! and bytes; writing them is `crate::plan_dir`'s.
 
 pub mod bvh;
 pub mod csv;

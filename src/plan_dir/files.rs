@@ -1,0 +1,142 @@
+//! The contents of a plan and the files they are rendered to: everything `mintorque plan` writes,
+//! assembled from a task and its plan ([`PlanContents::from_task`]) or from a record made in Rust.
+
+use super::Result;
+use crate::model::{figure, Model};
+use crate::plan::{self, task::Task, Plan};
+use crate::report::ergonomics::{self, Ergonomics};
+use crate::report::filmstrip::{self, View};
+use crate::report::record::{PlanRecord, SampleRecord};
+use crate::report::{self, viewer, Summary};
+use std::collections::BTreeMap;
+
+/// Everything a plan directory holds, before it is rendered to files.
+#[derive(Clone, Debug)]
+pub struct PlanContents {
+    pub model: Model,
+    pub record: PlanRecord,
+    /// `summary.json`: the summary, with the ergonomic report as its `ergonomics`.
+    pub summary: Option<Summary>,
+    pub ergonomics: Option<Ergonomics>,
+    /// `task.resolved.toml`.
+    pub resolved_task: Option<String>,
+    /// Plot the motion (with the initial guess dashed, when given).
+    pub plots: bool,
+    pub guess: Option<Vec<SampleRecord>>,
+    /// The camera of `filmstrip.svg` / `.png`.
+    pub filmstrip_view: View,
+}
+
+impl PlanContents {
+    /// A plan directory of a record alone (no summary, task or plots): for plans made in Rust.
+    pub fn from_record(model: Model, record: PlanRecord) -> PlanContents {
+        PlanContents {
+            model,
+            record,
+            summary: None,
+            ergonomics: None,
+            resolved_task: None,
+            plots: false,
+            guess: None,
+            filmstrip_view: View::Side,
+        }
+    }
+
+    /// The contents of `task` planned as `planned`: sampled at the task's rate, summarised (with the
+    /// ergonomic report), plotted unless the task or `no_plots` says not, the filmstrip in the task's view.
+    pub fn from_task(task: &Task, planned: &Plan, no_plots: bool) -> Result<PlanContents> {
+        super::finite::check_plan(task, planned)?;
+        let (spec, output) = (&task.spec, &task.file.output);
+        let times = report::sample_times(spec.duration, output.sample_rate);
+        let samples = plan::sample(spec, planned, &times)?;
+        let record = PlanRecord::new(spec, planned, &samples);
+        super::finite::check_record(&record, "the planned motion")?;
+        let summary = Summary::new(spec, planned, &samples);
+        let ergonomics = ergonomics::ergonomics(&spec.model, &record, &output.strength)?;
+        let resolved = toml::to_string_pretty(&task.resolved_file())
+            .map_err(|e| crate::Error::task(task.path.display().to_string(), "serialising the resolved task", e.to_string()))?;
+        let plots = output.plots && !no_plots;
+        let guess = match plots {
+            true => Some(plan::sample_initial_guess(spec, &times)?.iter().map(SampleRecord::from).collect()),
+            false => None,
+        };
+        let view = output
+            .filmstrip_view
+            .parse::<View>()
+            .map_err(|m| crate::Error::task(task.path.display().to_string(), "output.filmstrip_view", m))?;
+        Ok(PlanContents {
+            model: spec.model.clone(),
+            record,
+            summary: Some(summary),
+            ergonomics: Some(ergonomics),
+            resolved_task: Some(resolved),
+            plots,
+            guess,
+            filmstrip_view: view,
+        })
+    }
+
+    /// `summary.json`'s contents.
+    pub fn summary_json(&self) -> Result<Option<serde_json::Value>> {
+        let Some(summary) = &self.summary else { return Ok(None) };
+        let mut json = to_json(summary)?;
+        if let Some(e) = &self.ergonomics {
+            json["ergonomics"] = to_json(e)?;
+        }
+        Ok(Some(json))
+    }
+
+    /// Every file of the plan directory but the manifest, by name.
+    pub fn render(&self) -> Result<BTreeMap<String, Vec<u8>>> {
+        let (model, record) = (&self.model, &self.record);
+        report::check_samples(model, record)?;
+        crate::report::scene::check_record(model, record).map_err(|m| crate::Error::input("plan", "samples", m))?;
+        let mut files = BTreeMap::new();
+        let mut put = |name: &str, bytes: Vec<u8>| files.insert(name.to_string(), bytes);
+        put("plan.json", pretty(record)?);
+        put("model.figure.toml", figure::to_toml(model).into_bytes());
+        put("trajectory.csv", report::export::csv::csv(model, record).into_bytes());
+        let summary_text = self.summary_json()?.as_ref().map(pretty_text).transpose()?;
+        if let Some(text) = &summary_text {
+            put("summary.json", text.clone().into_bytes());
+        }
+        if let Some(t) = &self.resolved_task {
+            put("task.resolved.toml", t.clone().into_bytes());
+        }
+        let (name, html) = motion_html(model, record, summary_text.as_deref());
+        put(&name, html);
+        for (name, bytes) in filmstrip(model, record, self.filmstrip_view, super::filmstrip_names(None))? {
+            put(&name, bytes);
+        }
+        if self.plots {
+            files.extend(report::plots::plots(model, record, self.guess.as_deref())?);
+        }
+        Ok(files)
+    }
+}
+
+/// `motion.html`.
+pub(super) fn motion_html(model: &Model, record: &PlanRecord, summary: Option<&str>) -> (String, Vec<u8>) {
+    (viewer::VIEW_FILES[0].to_string(), viewer::motion_html(model, record, summary).into_bytes())
+}
+
+/// The filmstrip from `view`, as SVG and PNG under `names`.
+pub(super) fn filmstrip(model: &Model, record: &PlanRecord, view: View, names: [String; 2]) -> Result<Vec<(String, Vec<u8>)>> {
+    let frames = viewer::FILMSTRIP_FRAMES;
+    let svg = filmstrip::filmstrip_svg(model, record, frames, view);
+    let png = filmstrip::filmstrip_png(model, record, frames, view)?;
+    let [svg_name, png_name] = names;
+    Ok(vec![(svg_name, svg.into_bytes()), (png_name, png)])
+}
+
+fn to_json(v: &impl serde::Serialize) -> Result<serde_json::Value> {
+    serde_json::to_value(v).map_err(|e| crate::Error::input("summary.json", "serialising", e.to_string()).into())
+}
+
+fn pretty(v: &impl serde::Serialize) -> Result<Vec<u8>> {
+    pretty_text(v).map(String::into_bytes)
+}
+
+fn pretty_text(v: &impl serde::Serialize) -> Result<String> {
+    serde_json::to_string_pretty(v).map_err(|e| crate::Error::input("plan", "serialising", e.to_string()).into())
+}
