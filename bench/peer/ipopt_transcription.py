@@ -52,8 +52,13 @@ class Body:
 
 def load_model(urdf_path, joint_names):
     """Bodies in mintorque's joint order (`joint_names`), with parents, placements, axes, inertias, passive."""
-    model = pin.buildModelFromUrdf(str(urdf_path))
     root = ET.parse(urdf_path).getroot()
+    # urdfdom (Pinocchio's parser) demands <limit velocity>, which mintorque's URDF export leaves out:
+    # parse a copy with a dummy velocity limit (unused here).
+    for lim in root.iter("limit"):
+        if lim.get("velocity") is None:
+            lim.set("velocity", "1e9")
+    model = pin.buildModelFromXML(ET.tostring(root, encoding="unicode"))
     xml_joints = {j.get("name"): j for j in root.findall("joint")}
     pin_names = list(model.names)
     if model.nq != model.nv or model.nv != len(joint_names):
@@ -307,52 +312,145 @@ class Spline:
 # ---------------------------------------------------------------- the problem
 
 
-def build(bodies, order, spline, per_span, gravity, weights, position_limits, torque_limits, c_fixed, expand):
-    """The NLP in CasADi: x = free control points (control points 2 .. N-3 of every joint)."""
+def build(bodies, order, spline, per_span, gravity, weights, position_limits, torque_limits, c_fixed):
+    """The NLP in CasADi: x = free control points (control points 2 .. N-3 of every joint, joint-fastest).
+
+    Returns the plain NLP (x, f, g, bounds) and exact derivative functions assembled node by node: each
+    Gauss node touches 4 control points per joint, so its torque Jacobian (n x 4n) and its block of the
+    Lagrangian Hessian (4n x 4n) come from CasADi's AD of one SX node function, mapped over the nodes and
+    scattered into the banded global matrices by constant 0/1 matrices. (Letting nlpsol differentiate the
+    mapped MX graph itself gives the same numbers but is 30x slower; `expand` runs out of memory beyond
+    13 DOF.)
+    """
     n = len(bodies)
     N = spline.N
     ts, ws, bs = spline.nodes(per_span)
     K = len(ts)
     nfree = N - 4
-    x = ca.MX.sym("x", n * nfree)
+    nx = n * nfree
+    x = ca.MX.sym("x", nx)
     X = ca.reshape(x, n, nfree)  # column j = control point j+2
     Cfull = ca.horzcat(ca.DM(c_fixed[:, 0:2]), X, ca.DM(c_fixed[:, N - 2:N]))
-    # per-node function: C (n x 4), basis B (4 x 3) -> active torque (n)
+    # ---- per-node SX functions of C (n x 4 local control points) and basis B (4 x 3: b, db, ddb)
     Cs = ca.SX.sym("C", n, 4)
     Bs = ca.SX.sym("B", 4, 3)
+    cvec = ca.vec(Cs)  # column-major: entry a*n + i = joint i of control point first+a
     q, qd, qdd = ca.mtimes(Cs, Bs[:, 0]), ca.mtimes(Cs, Bs[:, 1]), ca.mtimes(Cs, Bs[:, 2])
     tau = rnea(bodies, order, q, qd, qdd, gravity, ca)
     tau = ca.vertcat(*[tau[k] + b.stiffness * (q[k] - b.rest) + b.damping * qd[k] for k, b in enumerate(bodies)])
-    node_fn = ca.Function("node", [Cs, Bs], [tau])
-    mapped = node_fn.map(K, "serial")
+    Wd = ca.DM(np.array(weights, dtype=float))
+    ws_sym = ca.SX.sym("w")
+    mu = ca.SX.sym("mu", n)
+    phi = 0.5 * ca.dot(Wd * tau, tau)  # 1/2 tau^T W tau at the node
+    J = ca.jacobian(tau, cvec)  # n x 4n
+    node_fn = ca.Function("node", [Cs, Bs, ws_sym], [tau, ca.densify(J), ca.densify(ws_sym * ca.gradient(phi, cvec))])
+    lag = ws_sym * phi + ca.dot(mu, tau)
+    Hn = ca.densify(ca.hessian(lag, cvec)[0])
+    hess_fn = ca.Function("node_hess", [Cs, Bs, ws_sym, mu], [Hn])
+    node_map = node_fn.map(K, "serial")
+    hess_map = hess_fn.map(K, "serial")
+    # ---- gathering and scattering
     cols = []
     for (s, _, _, _) in bs:
         cols.extend(range(s, s + 4))
-    Cstack = Cfull[:, cols]
     Bstack = ca.DM(np.hstack([np.array([b, db, ddb]).T for (_, b, db, ddb) in bs]))
-    taus = mapped(Cstack, Bstack)  # n x K
-    Wd = ca.DM(np.array(weights))
-    wk = ca.DM(np.array(ws)).T  # 1 x K
-    F = 0.5 * ca.sum2(wk * ca.sum1(ca.repmat(Wd, 1, K) * taus**2))
-    g, lbg, ubg = [], [], []
+    wrow = ca.DM(np.array(ws)).T  # 1 x K
+
+    def glob(j, i):
+        return (j - 2) * n + i if 2 <= j <= N - 3 else None
+
+    P = []  # P_k: 4n x nx selection of the node's free unknowns
+    for (s, _, _, _) in bs:
+        r, c_ = [], []
+        for a in range(4):
+            for i in range(n):
+                gidx = glob(s + a, i)
+                if gidx is not None:
+                    r.append(a * n + i)
+                    c_.append(gidx)
+        P.append(ca.DM(ca.Sparsity.triplet(4 * n, nx, r, c_), 1.0))
+    Pcat = ca.horzcat(*[Pk.T for Pk in P])  # nx x 4nK
+
+    def node_values(xv):
+        Cf = ca.horzcat(ca.DM(c_fixed[:, 0:2]), ca.reshape(xv, n, nfree), ca.DM(c_fixed[:, N - 2:N]))
+        return Cf[:, cols]
+
+    # ---- constraints: position rows (linear in x) then torque rows (joint-major, node-fastest)
+    pos_rows, lbg, ubg = [], [], []
+    pos_r, pos_c, pos_v = [], [], []
     if position_limits:
-        # q at the nodes is linear in x; skip the two end nodes (fixed postures, checked by mintorque).
+        # q at the nodes; the two end nodes are the fixed postures (checked by mintorque): skipped.
         for kk in range(1, K - 1):
             s, b, _, _ = bs[kk]
-            qk = ca.mtimes(Cfull[:, s:s + 4], ca.DM(b))
             for i, body in enumerate(bodies):
                 if math.isfinite(body.lower) or math.isfinite(body.upper):
-                    g.append(qk[i])
+                    row = len(pos_rows)
+                    pos_rows.append((kk, i))
                     lbg.append(body.lower if math.isfinite(body.lower) else -ca.inf)
                     ubg.append(body.upper if math.isfinite(body.upper) else ca.inf)
-    if torque_limits:
-        for i, body in enumerate(bodies):
-            if math.isfinite(body.effort):
-                g.append(taus[i, :].T)
-                lbg.extend([-body.effort] * K)
-                ubg.extend([body.effort] * K)
-    g = ca.vertcat(*g) if g else ca.MX(0, 1)
-    return x, F, g, np.array(lbg), np.array(ubg), node_fn, (ts, ws, bs)
+                    for a in range(4):
+                        gidx = glob(s + a, i)
+                        if gidx is not None:
+                            pos_r.append(row)
+                            pos_c.append(gidx)
+                            pos_v.append(b[a])
+    npos = len(pos_rows)
+    Jpos = ca.DM.triplet(pos_r, pos_c, ca.DM(pos_v), npos, nx) if npos else ca.DM(0, nx)
+    tq = [i for i, body in enumerate(bodies) if torque_limits and math.isfinite(body.effort)]
+    for i in tq:
+        lbg.extend([-bodies[i].effort] * K)
+        ubg.extend([bodies[i].effort] * K)
+    ntq = len(tq) * K
+    # constant parts of q at the nodes (fixed control points) for the position rows
+    q_const = np.zeros(npos)
+    for row, (kk, i) in enumerate(pos_rows):
+        s, b, _, _ = bs[kk]
+        q_const[row] = sum(b[a] * c_fixed[i, s + a] for a in range(4) if glob(s + a, i) is None)
+    Sel = []  # Sel_k: ntq x n, torque row of (joint i, node k) <- tau_i at node k
+    for k in range(K):
+        r = [m * K + k for m in range(len(tq))]
+        Sel.append(ca.DM(ca.Sparsity.triplet(ntq, n, r, tq), 1.0))
+
+    def evaluate(xv, with_jac):
+        taus, Js, Gs = node_map(node_values(xv), Bstack, wrow)
+        F = 0.5 * ca.sum2(wrow * ca.sum1(ca.repmat(Wd, 1, K) * taus**2))
+        gq = ca.mtimes(Jpos, xv) + ca.DM(q_const) if npos else ca.MX(0, 1)
+        gt = ca.vec(taus[tq, :].T) if tq else ca.MX(0, 1)
+        g = ca.vertcat(gq, gt)
+        if not with_jac:
+            return F, g
+        grad = ca.mtimes(Pcat, ca.vec(Gs))
+        Jt = None
+        for k in range(K):
+            term = ca.mtimes(Sel[k], ca.mtimes(Js[:, k * 4 * n:(k + 1) * 4 * n], P[k])) if tq else None
+            Jt = term if Jt is None else Jt + term
+        jac = ca.vertcat(Jpos, Jt) if tq else ca.MX(Jpos)
+        return F, g, grad, jac
+
+    F, g = evaluate(x, False)
+    p = ca.MX.sym("p", 0)
+    _, _, grad, jac = evaluate(x, True)
+    grad_f = ca.Function("grad_f", [x, p], [F, grad], ["x", "p"], ["f", "grad_f_x"])
+    jac_g = ca.Function("jac_g", [x, p], [g, jac], ["x", "p"], ["g", "jac_g_x"])
+    lam_f = ca.MX.sym("lam_f")
+    lam_g = ca.MX.sym("lam_g", npos + ntq)
+    mu_rows = []
+    for i in range(n):
+        if i in tq:
+            m = tq.index(i)
+            mu_rows.append(lam_g[npos + m * K:npos + (m + 1) * K].T)
+        else:
+            mu_rows.append(ca.MX.zeros(1, K))
+    mu_mat = ca.vertcat(*mu_rows)
+    Hs = hess_map(node_values(x), Bstack, lam_f * wrow, mu_mat)
+    H = None
+    for k in range(K):
+        term = ca.mtimes(P[k].T, ca.mtimes(Hs[:, k * 4 * n:(k + 1) * 4 * n], P[k]))
+        H = term if H is None else H + term
+    hess_lag = ca.Function("hess_lag", [x, p, lam_f, lam_g], [ca.triu(H)],
+                           ["x", "p", "lam_f", "lam_g"], ["triu_hess_gamma_x_x"])
+    return dict(x=x, F=F, g=g, lbg=np.array(lbg), ubg=np.array(ubg), grad_f=grad_f, jac_g=jac_g,
+                hess_lag=hess_lag, nodes=(ts, ws, bs))
 
 
 def objective_numpy(bodies, order, spline, nodes, gravity, weights, ctrl):
@@ -379,7 +477,10 @@ def main():
     ap.add_argument("--mintorque", default=None, help="binary used to write DIR/model.urdf if it is missing")
     ap.add_argument("--tol", type=float, default=1e-8, help="IPOPT tol (default 1e-8)")
     ap.add_argument("--max-iter", type=int, default=3000)
-    ap.add_argument("--expand", action="store_true", help="expand the MX graph to SX before solving")
+    ap.add_argument("--casadi-derivatives", action="store_true",
+                    help="let nlpsol differentiate the whole MX graph (slow) instead of the node-wise derivatives")
+    ap.add_argument("--check-derivatives", action="store_true",
+                    help="compare the node-wise derivatives with nlpsol's own AD at the start (slow for big models)")
     ap.add_argument("--check-tol", type=float, default=1e-9, help="relative tolerance of the sameness checks")
     ap.add_argument("--print-level", type=int, default=0)
     args = ap.parse_args()
@@ -434,16 +535,18 @@ def main():
     guess_ctrl = np.array([spline.linear_guess(q0[i], qT[i]) for i in range(n)]).T  # N x n
 
     t_build0 = time.perf_counter()
-    x, F, g, lbg, ubg, node_fn, nodes = build(bodies, order, spline, per_span, gravity, weights, position_limits,
-                                              torque_limits, c_fixed, args.expand)
+    nlp = build(bodies, order, spline, per_span, gravity, weights, position_limits, torque_limits, c_fixed)
+    x, F, g, lbg, ubg, nodes = nlp["x"], nlp["F"], nlp["g"], nlp["lbg"], nlp["ubg"], nlp["nodes"]
     opts = {
         "ipopt.hessian_approximation": "exact",
         "ipopt.tol": args.tol,
         "ipopt.max_iter": args.max_iter,
         "ipopt.print_level": args.print_level,
+        "ipopt.sb": "yes",
         "print_time": False,
-        "expand": args.expand,
     }
+    if not args.casadi_derivatives:
+        opts.update({"grad_f": nlp["grad_f"], "jac_g": nlp["jac_g"], "hess_lag": nlp["hess_lag"]})
     solver = ca.nlpsol("ipopt", "ipopt", {"x": x, "f": F, "g": g}, opts)
     fF = ca.Function("F", [x], [F])
     build_s = time.perf_counter() - t_build0
@@ -461,7 +564,22 @@ def main():
         "F_at_our_plan_numpy_rel": rel(F_ours_np, summary["objective"]),
         "F_at_guess_rel": rel(F_guess_eval, summary["initial_guess_objective"]),
     }
-    ok = (rnea_err < 1e-10 and checks["F_at_our_plan_rel"] < args.check_tol
+    if args.check_derivatives:
+        # the node-wise derivatives against CasADi's AD of the whole MX graph, at the start, random multipliers
+        x0 = to_x(guess_ctrl)
+        rng = np.random.default_rng(2)
+        lg = rng.normal(size=g.shape[0])
+        lf = ca.MX.sym("lf")
+        lgs = ca.MX.sym("lg", g.shape[0])
+        ref = ca.Function("ref", [x, lf, lgs], [ca.gradient(F, x), ca.jacobian(g, x),
+                                                ca.triu(ca.hessian(lf * F + ca.dot(lgs, g), x)[0])])
+        gr, jr, hr = [np.array(ca.densify(v)) for v in ref(x0, 0.7, lg)]
+        go = np.array(nlp["grad_f"](x0, [])[1])
+        jo = np.array(ca.densify(nlp["jac_g"](x0, [])[1]))
+        ho = np.array(ca.densify(nlp["hess_lag"](x0, [], 0.7, lg)))
+        err = lambda a, b: float(np.max(np.abs(a - b)) / (1.0 + np.max(np.abs(b)))) if b.size else 0.0  # noqa: E731
+        checks["derivatives_vs_casadi_ad"] = max(err(go, gr), err(jo, jr), err(ho, hr))
+    ok = (rnea_err < 1e-10 and checks.get("derivatives_vs_casadi_ad", 0.0) < 1e-10 and checks["F_at_our_plan_rel"] < args.check_tol
           and checks["F_at_our_plan_numpy_rel"] < args.check_tol and checks["F_at_guess_rel"] < args.check_tol)
 
     # --- solve from the same start
