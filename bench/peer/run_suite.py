@@ -44,7 +44,19 @@ def main():
     out_root = Path(os.environ.get("PEER_OUT", HERE / "out"))
     only = [a for a in sys.argv[1:]]
     tasks = [t for t in SUITE if not only or any(o in t for o in only)]
-    rows, failures, records = [], 0, []
+    header = (
+        "| task | DOF | N | F ours | F IPOPT | F ours / F IPOPT | ours solve | ours whole | ours iter | "
+        "IPOPT solve | IPOPT build | IPOPT whole | IPOPT iter | IPOPT solve / ours solve | sameness | notes |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+    )
+    print(header, flush=True)
+
+    class Rows(list):
+        def append(self, row):
+            super().append(row)
+            print(row, flush=True)
+
+    rows, failures, records = Rows(), 0, []
     for task in tasks:
         name = Path(task).stem
         d = out_root / name
@@ -69,6 +81,7 @@ def main():
             rows.append(f"| {name} | — | — | peer failed (exit {q.returncode}): {q.stderr.strip()[-120:]} |")
             failures += 1
             continue
+        (d / "peer.json").write_text(q.stdout.strip().splitlines()[-1])
         r.pop("x_ipopt_ctrl", None)
         if not r["checks_ok"]:
             failures += 1
@@ -95,13 +108,6 @@ def main():
                                                                   "solve_seconds", "initial_guess_objective")},
                         "ours_whole_s": ours_whole, "peer": r, "peer_whole_s": peer_whole})
         print(f"done {name}: F ours {s['objective']:.6g}, F IPOPT {r['F_ipopt']:.6g}", file=sys.stderr, flush=True)
-    header = (
-        "| task | DOF | N | F ours | F IPOPT | F ours / F IPOPT | ours solve | ours whole | ours iter | "
-        "IPOPT solve | IPOPT build | IPOPT whole | IPOPT iter | IPOPT solve / ours solve | sameness | notes |\n"
-        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
-    )
-    print(header)
-    print("\n".join(rows))
     (out_root / "results.json").write_text(json.dumps(records, indent=1))
     sys.exit(1 if failures else 0)
 
