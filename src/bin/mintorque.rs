@@ -36,6 +36,9 @@ enum Command {
         /// Override the number of B-spline control points per joint.
         #[arg(long)]
         control_points: Option<usize>,
+        /// Override the number of starting points solved in parallel (the best plan is kept).
+        #[arg(long)]
+        starts: Option<usize>,
         /// No progress output.
         #[arg(long, short)]
         quiet: bool,
@@ -162,7 +165,7 @@ fn progress(quiet: bool) -> (Option<indicatif::ProgressBar>, impl FnMut(&mintorq
 /// Plans a task (overrides applied, settings checked), reporting why it did not converge if it did not.
 fn solve(task: &Task, quiet: bool) -> Result<plan::Plan> {
     let (bar, mut observer) = progress(quiet);
-    let planned = plan::plan(&task.spec, task.solver, &task.settings, &mut observer)?;
+    let planned = plan::plan_with_starts(&task.spec, task.solver, &task.settings, &task.multistart, &mut observer)?;
     if let Some(b) = bar {
         b.finish_and_clear();
     }
@@ -289,13 +292,13 @@ fn run_dynamics(model: &Path, states: Option<PathBuf>, gravity: Option<Vec<f64>>
 
 fn run(cli: Cli) -> Result<ExitCode> {
     match cli.command {
-        Command::Plan { task, out, solver, control_points, quiet, no_plots } => {
+        Command::Plan { task, out, solver, control_points, starts, quiet, no_plots } => {
             let solver = solver.map(|s| match s {
                 SolverArg::Structured => SolverKind::Structured,
                 SolverArg::Newton => SolverKind::Newton,
                 SolverArg::AuglagBfgs => SolverKind::AuglagBfgs,
             });
-            Ok(exit(run_plan(&task, &out, &Overrides { solver, control_points }, quiet, no_plots)?))
+            Ok(exit(run_plan(&task, &out, &Overrides { solver, control_points, starts }, quiet, no_plots)?))
         }
         Command::Export { dir, format, out } => run_export(&dir, &format, out).map(|()| ExitCode::SUCCESS),
         Command::View { dir, filmstrip } => {

@@ -3,17 +3,22 @@
 //! the motion at any time, with an honest account of how the solve went.
 
 pub mod examples;
+mod guess;
+mod multistart;
+mod run;
 pub mod simulate;
 pub mod spec;
 pub mod task;
 pub mod transcription;
 
+pub use guess::initial_x;
+pub use multistart::{MultiStart, StartReport};
+pub use run::{plan, plan_with_starts};
 pub use spec::{Balance, Contact, ContactKind, InitialGuess, Objective, PointLoad, Spec};
 pub use transcription::{NodeValues, Transcription};
 
 use crate::error::{Error, Result};
-use crate::solve::{self, Outcome, Problem, Progress, Settings, Solver};
-use std::time::Instant;
+use crate::solve::{self, Outcome, Problem};
 
 /// Which solver to use.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -57,6 +62,9 @@ pub struct Plan {
     pub solve_seconds: f64,
     /// The worst scaled constraint violation on a dense grid between the nodes, and where.
     pub worst_between_nodes: Option<(f64, String)>,
+    /// Every start's outcome (one entry for a single start), and which one this plan is.
+    pub starts: Vec<StartReport>,
+    pub best_start: usize,
 }
 
 impl Plan {
@@ -197,92 +205,6 @@ pub fn close_loop(
     Err(format!("the contacts cannot be closed by moving the listed joints: {:.1} mm remain", residual * 1e3))
 }
 
-/// The initial guess as solver unknowns.
-pub fn initial_x(spec: &Spec, problem: &mut Transcription) -> Result<Vec<f64>> {
-    let nv = spec.model.nv();
-    let n = spec.n_ctrl;
-    let spline = &problem.spline;
-    let mut ctrl = vec![0.0; n * nv];
-    for i in 0..nv {
-        let column = match &spec.initial_guess {
-            InitialGuess::Linear => spline.linear_guess(spec.start[i], spec.goal[i]),
-            InitialGuess::Via(vias) => {
-                let points: Vec<(f64, f64)> = vias.iter().map(|(t, q)| (*t, q[i])).collect();
-                spline.through_points(spec.start[i], &points, spec.goal[i])?
-            }
-            InitialGuess::ControlPoints(c) => (0..n).map(|j| c[j * nv + i]).collect(),
-            InitialGuess::Samples(samples) => {
-                let times: Vec<f64> = samples.iter().map(|(t, _)| *t).collect();
-                let values: Vec<f64> = samples.iter().map(|(_, q)| q[i]).collect();
-                spline.fit_least_squares(&times, &values)?
-            }
-        };
-        for j in 0..n {
-            ctrl[j * nv + i] = column[j];
-        }
-    }
-    let lambda = vec![0.0; n * problem.layout.n_lambda];
-    let mut x = problem.layout.pack(&ctrl, &lambda);
-    initial_contact_forces(problem, &mut x)?;
-    Ok(x)
-}
-
-/// The contact forces that best carry the initial motion: the residuals are linear in the contact-force
-/// control points, so for the guessed motion the least-squares forces are one linear solve. Starting from
-/// them instead of zero forces spares the solver its first and hardest iterations on closed loops.
-fn initial_contact_forces(problem: &mut Transcription, x: &mut [f64]) -> Result<()> {
-    let layout = problem.layout.clone();
-    if layout.n_lambda == 0 {
-        return Ok(());
-    }
-    let columns: Vec<usize> = (0..layout.n_ctrl)
-        .flat_map(|j| (0..layout.n_lambda).map(move |m| (j, m)))
-        .map(|(j, m)| layout.lambda_var(j, m))
-        .collect();
-    let dims = problem.dims();
-    let fail = |e: String| Error::task("task", "initial guess", e);
-    let mut eval = solve::Evaluation::new(dims, &problem.jacobian_patterns()).map_err(|e| fail(e.to_string()))?;
-    problem.evaluate(x, true, &mut eval).map_err(fail)?;
-    let m = columns.len();
-    let mut a = nalgebra::DMatrix::<f64>::zeros(m, m);
-    let mut b = nalgebra::DVector::<f64>::zeros(m);
-    let position: std::collections::BTreeMap<usize, usize> = columns.iter().enumerate().map(|(k, &c)| (c, k)).collect();
-    for row in 0..dims.n_res {
-        let entries: Vec<(usize, f64)> = eval
-            .jr
-            .row_cols(row)
-            .iter()
-            .zip(eval.jr.row_values(row))
-            .filter_map(|(c, v)| position.get(c).map(|&k| (k, *v)))
-            .collect();
-        for &(k, vk) in &entries {
-            b[k] -= vk * eval.r[row];
-            for &(l, vl) in &entries {
-                a[(k, l)] += vk * vl;
-            }
-        }
-    }
-    // A whisper of ridge keeps forces that the motion does not determine (e.g. along a frictionless plane's
-    // tangent) at zero rather than arbitrary.
-    let ridge = 1e-9 * (0..m).map(|k| a[(k, k)]).fold(0.0, f64::max).max(1e-300);
-    for k in 0..m {
-        a[(k, k)] += ridge;
-    }
-    if let Some(delta) = a.cholesky().map(|c| c.solve(&b)) {
-        for (k, &c) in columns.iter().enumerate() {
-            x[c] += delta[k];
-        }
-    }
-    Ok(())
-}
-
-fn objective_at(problem: &mut Transcription, x: &[f64]) -> std::result::Result<f64, String> {
-    let dims = problem.dims();
-    let mut eval = solve::Evaluation::new(dims, &problem.jacobian_patterns()).map_err(|e| e.to_string())?;
-    problem.evaluate(x, false, &mut eval)?;
-    Ok(eval.objective())
-}
-
 /// The worst scaled violation on a grid of `per_span` evenly spaced times per knot span (ends included).
 pub fn check_between_nodes(spec: &Spec, x: &[f64], per_span: usize) -> Result<Option<(f64, String)>> {
     let count = (spec.n_ctrl - 3) * per_span; // a clamped cubic has N − 3 knot spans
@@ -309,58 +231,6 @@ pub fn check_between_nodes(spec: &Spec, x: &[f64], per_span: usize) -> Result<Op
         consider(g.max(0.0) / scales.ineq[i], solve::ConstraintKind::Inequality, i);
     }
     Ok(worst.map(|(v, kind, i)| (v, grid.constraint_name(kind, i))))
-}
-
-/// Plans the motion of `spec`: validates it, builds the initial guess, solves, and checks the result
-/// between the nodes. A plan that did not converge is still returned (with `converged() == false` and
-/// the reason): the caller decides what to do with it.
-pub fn plan(spec: &Spec, solver: SolverKind, settings: &Settings, observer: &mut dyn FnMut(&Progress)) -> Result<Plan> {
-    validate(spec, "task")?;
-    let mut problem = Transcription::new(spec)?;
-    let x0 = initial_x(spec, &mut problem)?;
-    let initial_objective = objective_at(&mut problem, &x0).map_err(|e| Error::task("task", "initial guess", e))?;
-    let started = Instant::now();
-    let mut outcome = match solver {
-        SolverKind::Structured => solve::AugLagLevenbergMarquardt.solve(&mut problem, &x0, settings, observer),
-        SolverKind::Newton => solve::AugLagNewton.solve(&mut problem, &x0, settings, observer),
-        SolverKind::AuglagBfgs => solve::AugLagBfgs::default().solve(&mut problem, &x0, settings, observer),
-    };
-    // Gauss–Newton ignores the curvature of the residuals (large with contact forces: λ·∂²Φ), so on loop
-    // closures Levenberg–Marquardt can stall just short of the stationarity test. A quasi-Newton polish
-    // from where it stopped, warm-started with its multipliers, supplies that curvature.
-    let mut polished = false;
-    if solver != SolverKind::AuglagBfgs
-        && !outcome.converged
-        && matches!(outcome.reason, solve::StopReason::Stalled | solve::StopReason::MaxIterations)
-    {
-        let polish_settings = Settings { warm_start: Some(outcome.multipliers.clone()), ..settings.clone() };
-        let polish = solve::AugLagBfgs::default().solve(&mut problem, &outcome.x, &polish_settings, observer);
-        if polish.converged || polish.worst_violation <= outcome.worst_violation && polish.objective <= outcome.objective {
-            polished = true;
-            outcome = Outcome {
-                iterations: outcome.iterations + polish.iterations,
-                evaluations: outcome.evaluations + polish.evaluations,
-                ..polish
-            };
-        }
-    }
-    let solve_seconds = started.elapsed().as_secs_f64();
-    let nv = spec.model.nv();
-    let mut ctrl = vec![0.0; spec.n_ctrl * nv];
-    let mut lambda_ctrl = vec![0.0; spec.n_ctrl * problem.layout.n_lambda];
-    problem.layout.unpack(&outcome.x, &problem.fixed_values, &mut ctrl, &mut lambda_ctrl);
-    let worst_between_nodes = check_between_nodes(spec, &outcome.x, 16)?;
-    Ok(Plan {
-        ctrl,
-        lambda_ctrl,
-        x: outcome.x.clone(),
-        outcome,
-        solver,
-        polished,
-        initial_objective,
-        solve_seconds,
-        worst_between_nodes,
-    })
 }
 
 /// The planned motion sampled at `times` (s).

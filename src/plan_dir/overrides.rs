@@ -15,6 +15,8 @@ pub struct Overrides {
     pub solver: Option<SolverKind>,
     /// `discretization.control_points`.
     pub control_points: Option<usize>,
+    /// `solver.starts`.
+    pub starts: Option<usize>,
 }
 
 /// Reads and resolves the task at `path` with `overrides` applied, its solver settings checked.
@@ -46,6 +48,10 @@ fn apply(text: &str, path: &Path, overrides: &Overrides) -> Result<Option<String
     if let Some(s) = overrides.solver {
         let name = toml::Value::try_from(s).map_err(|e| Error::task(&origin, "solver.method", e.to_string()))?;
         set("solver", "method", name)?;
+    }
+    if let Some(k) = overrides.starts {
+        let k = i64::try_from(k).map_err(|_| Error::task(&origin, "--starts", format!("{k} is too large")))?;
+        set("solver", "starts", toml::Value::Integer(k))?;
     }
     if let Some(n) = overrides.control_points {
         let n = i64::try_from(n).map_err(|_| Error::task(&origin, "--control-points", format!("{n} is too large")))?;

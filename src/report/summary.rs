@@ -30,6 +30,9 @@ pub struct Summary {
     pub worst_violation_between_nodes: Option<Violation>,
     pub joints: Vec<JointSummary>,
     pub contacts: Vec<ContactSummary>,
+    /// Every start's effort and outcome (`solver.starts`), and the index of the one this plan is.
+    pub starts: Vec<crate::plan::StartReport>,
+    pub best_start: usize,
 }
 
 #[derive(Serialize, Debug, Clone)]
@@ -135,6 +138,8 @@ impl Summary {
                 .map(|(v, n)| Violation { value: *v, constraint: n.clone() }),
             joints,
             contacts,
+            starts: plan.starts.clone(),
+            best_start: plan.best_start,
         }
     }
 }

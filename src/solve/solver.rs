@@ -52,7 +52,7 @@ pub struct Settings {
     pub violation_decrease: f64,
     /// `w_p` beyond which a still-infeasible problem is declared infeasible.
     pub max_penalty: f64,
-    /// Wall-clock limit in seconds.
+    /// Wall-clock limit in seconds (default 60, as in a task file; `None`: no limit).
     pub time_limit: Option<f64>,
     /// Multipliers to start from (e.g. from a previous solve of a similar problem); zero if `None`.
     pub warm_start: Option<Multipliers>,
@@ -69,7 +69,7 @@ impl Default for Settings {
             penalty_growth: 10.0,
             violation_decrease: 0.25,
             max_penalty: 1e12,
-            time_limit: None,
+            time_limit: Some(60.0),
             warm_start: None,
         }
     }

@@ -15,6 +15,8 @@ pub const DURATION: Range = Range { min: 0.0, max: 1e4, unit: "s" };
 pub const MAX_CONTROL_POINTS: usize = 2000;
 /// Gauss–Legendre nodes per knot span (the quadrature tables go that far).
 pub const MAX_NODES_PER_SPAN: usize = 32;
+/// Parallel starts: each holds its own transcription.
+pub const MAX_STARTS: usize = 64;
 /// Iterations of the solver.
 pub const MAX_ITERATIONS: usize = 10_000_000;
 /// The solver's wall-clock limit (s).
@@ -122,6 +124,7 @@ fn settings(file: &TaskFile, origin: &str, at: &At) -> Result<()> {
     at("solver.tolerance", positive(&TOLERANCE, s.tolerance))?;
     at("solver.violation_tolerance", positive(&TOLERANCE, s.violation_tolerance))?;
     count("solver.max_iterations", s.max_iterations, 1, MAX_ITERATIONS)?;
+    count("solver.starts", file.solver.starts, 1, MAX_STARTS)?;
     if let Some(t) = s.time_limit {
         at("solver.time_limit", positive(&TIME_LIMIT, t))?;
     }

@@ -18,7 +18,7 @@ pub use schema::*;
 pub use view::View;
 
 use super::spec::Spec;
-use super::SolverKind;
+use super::{MultiStart, SolverKind};
 use crate::error::{Error, Result};
 use crate::model::toml_doc::Doc;
 use crate::model::JointKind;
@@ -32,6 +32,8 @@ pub struct Task {
     pub spec: Spec,
     pub solver: SolverKind,
     pub settings: Settings,
+    /// `solver.starts` and `solver.seed`.
+    pub multistart: MultiStart,
     /// The filmstrip's camera (`output.filmstrip_view`).
     pub filmstrip_view: View,
     /// What is legal but looks like a slip (radians in a degrees field), each naming the file and field.
@@ -70,7 +72,17 @@ impl Task {
             time_limit: s.time_limit,
             ..Settings::default()
         };
-        Ok(Task { path: path.to_path_buf(), solver: file.solver.method, file, spec, settings, filmstrip_view, warnings })
+        let multistart = MultiStart { starts: file.solver.starts, seed: file.solver.seed };
+        Ok(Task {
+            path: path.to_path_buf(),
+            solver: file.solver.method,
+            multistart,
+            file,
+            spec,
+            settings,
+            filmstrip_view,
+            warnings,
+        })
     }
 
     /// The task as resolved: every path absolute (so the file works from any directory), the start and goal

@@ -312,8 +312,21 @@ impl Default for DiscretizationSection {
 pub struct SolverSection {
     #[serde(default = "structured")]
     pub method: SolverKind,
+    /// Starting points solved in parallel, the best plan kept (`plan::multistart`).
+    #[serde(default = "default_starts")]
+    pub starts: usize,
+    /// Seed of the perturbed starts.
+    #[serde(default = "default_seed")]
+    pub seed: u64,
     #[serde(default, flatten)]
     pub settings: SolverSettings,
+}
+
+fn default_starts() -> usize {
+    crate::plan::MultiStart::default().starts
+}
+fn default_seed() -> u64 {
+    crate::plan::MultiStart::default().seed
 }
 
 fn structured() -> SolverKind {
@@ -322,7 +335,12 @@ fn structured() -> SolverKind {
 
 impl Default for SolverSection {
     fn default() -> Self {
-        SolverSection { method: SolverKind::Structured, settings: SolverSettings::default() }
+        SolverSection {
+            method: SolverKind::Structured,
+            starts: default_starts(),
+            seed: default_seed(),
+            settings: SolverSettings::default(),
+        }
     }
 }
 
@@ -338,8 +356,13 @@ pub struct SolverSettings {
     pub violation_tolerance: f64,
     #[serde(default = "max_iterations")]
     pub max_iterations: usize,
-    /// Seconds.
+    /// Seconds (default 60).
+    #[serde(default = "time_limit")]
     pub time_limit: Option<f64>,
+}
+
+fn time_limit() -> Option<f64> {
+    crate::solve::Settings::default().time_limit
 }
 
 fn tol() -> f64 {
@@ -351,7 +374,12 @@ fn max_iterations() -> usize {
 
 impl Default for SolverSettings {
     fn default() -> Self {
-        SolverSettings { tolerance: tol(), violation_tolerance: tol(), max_iterations: max_iterations(), time_limit: None }
+        SolverSettings {
+            tolerance: tol(),
+            violation_tolerance: tol(),
+            max_iterations: max_iterations(),
+            time_limit: time_limit(),
+        }
     }
 }
 

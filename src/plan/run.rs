@@ -1,0 +1,121 @@
+//! Running a solve. One start is one or two phases — the chosen solver, then, where Levenberg–Marquardt
+//! stalls short of the test, a BFGS polish warm-started with its multipliers — under **one** iteration budget
+//! and **one** time limit ([`Settings::max_iterations`], [`Settings::time_limit`]): the polish gets what the
+//! first phase left. Several starts ([`MultiStart`]) run in parallel and the best plan is kept.
+
+use super::guess::{initial_x, objective_at};
+use super::multistart::{self, MultiStart, StartReport};
+use super::{check_between_nodes, validate, Plan, SolverKind, Spec, Transcription};
+use crate::error::{Error, Result};
+use crate::solve::{self, Outcome, Progress, Settings, Solver, StopReason};
+use std::time::{Duration, Instant};
+
+/// Plans the motion of `spec` from its initial guess: validates it, builds the guess, solves, and checks the
+/// result between the nodes. A plan that did not converge is still returned (with `converged() == false`
+/// and the reason): the caller decides what to do with it.
+pub fn plan(spec: &Spec, solver: SolverKind, settings: &Settings, observer: &mut dyn FnMut(&Progress)) -> Result<Plan> {
+    plan_with_starts(spec, solver, settings, &MultiStart::single(), observer)
+}
+
+/// [`plan`] from `multi.starts` starting points (a task file's default is [`MultiStart::default`], two) — the guess and deterministic perturbations of it (see
+/// [`super::multistart`]) — solved in parallel; returns the best plan (converged before not, then least
+/// effort), with every start's outcome in [`Plan::starts`]. `observer` sees the first start's progress.
+pub fn plan_with_starts(
+    spec: &Spec,
+    solver: SolverKind,
+    settings: &Settings,
+    multi: &MultiStart,
+    observer: &mut dyn FnMut(&Progress),
+) -> Result<Plan> {
+    validate(spec, "task")?;
+    let started = Instant::now();
+    let mut problem = Transcription::new(spec)?;
+    let x0 = initial_x(spec, &mut problem)?;
+    let initial_objective = objective_at(&mut problem, &x0).map_err(|e| Error::task("task", "initial guess", e))?;
+    let guesses = multistart::guesses(spec, &mut problem, &x0, multi)?;
+    let deadline = settings.time_limit.map(|t| started + Duration::from_secs_f64(t));
+    let runs = multistart::run_all(&guesses, observer, |x, observer| run_start(spec, solver, settings, deadline, x, observer))?;
+    let best = multistart::best(&runs);
+    let starts = runs.iter().enumerate().map(|(k, r)| StartReport::new(k, multi, &r.outcome, r.polished, r.seconds)).collect();
+    let run = runs.into_iter().nth(best).expect("at least one start");
+    let nv = spec.model.nv();
+    let mut ctrl = vec![0.0; spec.n_ctrl * nv];
+    let mut lambda_ctrl = vec![0.0; spec.n_ctrl * problem.layout.n_lambda];
+    problem.layout.unpack(&run.outcome.x, &problem.fixed_values, &mut ctrl, &mut lambda_ctrl);
+    let worst_between_nodes = check_between_nodes(spec, &run.outcome.x, 16)?;
+    Ok(Plan {
+        ctrl,
+        lambda_ctrl,
+        x: run.outcome.x.clone(),
+        outcome: run.outcome,
+        solver,
+        polished: run.polished,
+        initial_objective,
+        solve_seconds: started.elapsed().as_secs_f64(),
+        worst_between_nodes,
+        starts,
+        best_start: best,
+    })
+}
+
+/// One start's result.
+pub(super) struct Run {
+    pub outcome: Outcome,
+    pub polished: bool,
+    pub seconds: f64,
+}
+
+/// Solves from `x0` with `solver`, then polishes if it stalled, within the budget of `settings` and the
+/// whole solve's `deadline`.
+pub(super) fn run_start(
+    spec: &Spec,
+    solver: SolverKind,
+    settings: &Settings,
+    deadline: Option<Instant>,
+    x0: &[f64],
+    observer: &mut dyn FnMut(&Progress),
+) -> Result<Run> {
+    let started = Instant::now();
+    let mut problem = Transcription::new(spec)?;
+    let first = Settings { time_limit: remaining(deadline), ..settings.clone() };
+    let mut outcome = match solver {
+        SolverKind::Structured => solve::AugLagLevenbergMarquardt.solve(&mut problem, x0, &first, observer),
+        SolverKind::Newton => solve::AugLagNewton.solve(&mut problem, x0, &first, observer),
+        SolverKind::AuglagBfgs => solve::AugLagBfgs::default().solve(&mut problem, x0, &first, observer),
+    };
+    // Gauss–Newton ignores the curvature of the residuals (large with contact forces: λ·∂²Φ), so on loop
+    // closures Levenberg–Marquardt can stall just short of the stationarity test. A quasi-Newton polish
+    // from where it stopped, warm-started with its multipliers, supplies that curvature — with what is
+    // left of the same budget.
+    let left = settings.max_iterations.saturating_sub(outcome.iterations);
+    let mut polished = false;
+    if solver != SolverKind::AuglagBfgs
+        && !outcome.converged
+        && matches!(outcome.reason, StopReason::Stalled | StopReason::MaxIterations)
+        && left > 0
+        && remaining(deadline).is_none_or(|t| t > 0.0)
+    {
+        let polish_settings = Settings {
+            warm_start: Some(outcome.multipliers.clone()),
+            max_iterations: left,
+            time_limit: remaining(deadline),
+            ..settings.clone()
+        };
+        let polish = solve::AugLagBfgs::default().solve(&mut problem, &outcome.x, &polish_settings, observer);
+        if polish.converged || polish.worst_violation <= outcome.worst_violation && polish.objective <= outcome.objective {
+            polished = true;
+            outcome = Outcome {
+                iterations: outcome.iterations + polish.iterations,
+                evaluations: outcome.evaluations + polish.evaluations,
+                outer_iterations: outcome.outer_iterations + polish.outer_iterations,
+                ..polish
+            };
+        }
+    }
+    Ok(Run { outcome, polished, seconds: started.elapsed().as_secs_f64() })
+}
+
+/// Seconds left before `deadline` (`None`: no limit).
+fn remaining(deadline: Option<Instant>) -> Option<f64> {
+    deadline.map(|d| d.saturating_duration_since(Instant::now()).as_secs_f64())
+}

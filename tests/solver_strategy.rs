@@ -1,0 +1,110 @@
+//! What the planner does around the solver: multi-start (deterministic for a seed, never worse than one
+//! start), warm starts from a converged plan, one budget for every phase, and the closed loop of the
+//! push-up at every discretisation.
+
+use mintorque::plan::{self, task::Task, InitialGuess, MultiStart, SolverKind};
+use mintorque::solve::Settings;
+use std::path::Path;
+
+fn task(example: &str) -> Task {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples").join(format!("{example}.toml"));
+    Task::load(&path).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Three starts of the double pendulum: the same seed gives the very same plan (bit for bit, whatever the
+/// thread timing), every start is reported, and the kept plan is the best — here strictly better than the
+/// single start, which lands in the higher of the two basins.
+#[test]
+fn multistart_is_deterministic_and_never_worse_than_one_start() {
+    let t = task("double_pendulum");
+    let multi = MultiStart { starts: 3, seed: 1 };
+    let single = plan::plan(&t.spec, t.solver, &t.settings, &mut |_| {}).unwrap();
+    let a = plan::plan_with_starts(&t.spec, t.solver, &t.settings, &multi, &mut |_| {}).unwrap();
+    let b = plan::plan_with_starts(&t.spec, t.solver, &t.settings, &multi, &mut |_| {}).unwrap();
+    assert_eq!(a.x, b.x, "same seed, same plan");
+    assert_eq!(a.starts.len(), 3);
+    assert_eq!(a.starts[0].objective, single.outcome.objective, "start 0 is the single start");
+    assert!(a.converged());
+    for s in &a.starts {
+        println!(
+            "start {} (seed {:?}): effort {:.2} converged {} in {} iterations",
+            s.index, s.seed, s.objective, s.converged, s.iterations
+        );
+        if s.converged {
+            assert!(
+                a.outcome.objective <= s.objective,
+                "kept {} but start {} reached {}",
+                a.outcome.objective,
+                s.index,
+                s.objective
+            );
+        }
+    }
+    assert!(
+        a.outcome.objective < 0.99 * single.outcome.objective,
+        "multi-start {} is not better than the single start {}",
+        a.outcome.objective,
+        single.outcome.objective
+    );
+    let other_seed =
+        plan::plan_with_starts(&t.spec, t.solver, &t.settings, &MultiStart { seed: 2, ..multi }, &mut |_| {}).unwrap();
+    assert_ne!(other_seed.starts[1].objective, a.starts[1].objective, "another seed perturbs differently");
+}
+
+/// Re-planning from a converged plan's control points and multipliers converges at once: no walking away.
+#[test]
+fn a_warm_start_at_an_optimum_is_immediate() {
+    for (example, solver) in
+        [("arm_lift_earth", SolverKind::Structured), ("arm_lift_earth", SolverKind::Newton), ("leg_lift", SolverKind::Structured)]
+    {
+        let t = task(example);
+        let first = plan::plan(&t.spec, solver, &t.settings, &mut |_| {}).unwrap();
+        assert!(first.converged(), "{example}: {}", first.outcome.reason);
+        let mut spec = t.spec.clone();
+        spec.initial_guess = InitialGuess::ControlPoints(first.ctrl.clone());
+        let settings = Settings { warm_start: Some(first.outcome.multipliers.clone()), ..t.settings.clone() };
+        let again = plan::plan(&spec, solver, &settings, &mut |_| {}).unwrap();
+        println!("{example} {solver:?}: {} iterations cold, {} warm", first.outcome.iterations, again.outcome.iterations);
+        assert!(again.converged());
+        assert!(again.outcome.iterations <= 5, "{example}: {} iterations from the optimum", again.outcome.iterations);
+        assert!((again.outcome.objective - first.outcome.objective).abs() <= 1e-6 * first.outcome.objective);
+    }
+}
+
+/// The iteration budget covers every phase: a tiny budget is not exceeded by the polish.
+#[test]
+fn one_iteration_budget_for_every_phase() {
+    let t = task("push_up");
+    let settings = Settings { max_iterations: 40, ..t.settings.clone() };
+    let planned = plan::plan(&t.spec, SolverKind::Structured, &settings, &mut |_| {}).unwrap();
+    assert!(!planned.converged());
+    assert!(planned.outcome.iterations <= 40, "{} iterations with a budget of 40", planned.outcome.iterations);
+    let timed = Settings { time_limit: Some(0.05), ..t.settings.clone() };
+    let started = std::time::Instant::now();
+    let planned = plan::plan(&t.spec, SolverKind::Structured, &timed, &mut |_| {}).unwrap();
+    assert!(!planned.converged());
+    // The limit is checked between iterations: one iteration of slack, far below a second phase.
+    assert!(started.elapsed().as_secs_f64() < 0.05 + 0.5, "{:.3} s with a limit of 0.05 s", started.elapsed().as_secs_f64());
+}
+
+/// The push-up (a closed loop: hands and feet held) converges at every N from 12 to 32 with the Newton
+/// solver, whose model has the curvature λ·∂²Φ that Gauss–Newton lacks (the default `structured` stalls
+/// at several N: docs/performance.md).
+#[test]
+fn the_push_up_converges_at_every_n_with_newton() {
+    let t = task("push_up");
+    let mut failures = Vec::new();
+    for n in 12..=32 {
+        let mut spec = t.spec.clone();
+        spec.n_ctrl = n;
+        let planned = plan::plan(&spec, SolverKind::Newton, &t.settings, &mut |_| {}).unwrap();
+        println!(
+            "N = {n}: {} in {} iterations, effort {:.1}",
+            planned.outcome.reason, planned.outcome.iterations, planned.outcome.objective
+        );
+        if !planned.converged() {
+            failures.push((n, planned.outcome.reason.to_string()));
+        }
+    }
+    assert!(failures.is_empty(), "not converged: {failures:?}");
+}
