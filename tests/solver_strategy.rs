@@ -108,3 +108,15 @@ fn the_push_up_converges_at_every_n_with_newton() {
     }
     assert!(failures.is_empty(), "not converged: {failures:?}");
 }
+
+/// A non-finite value at the start stops the solve naming the joint, the time and the quantity.
+#[test]
+fn a_non_finite_iterate_names_the_joint_and_the_time() {
+    let t = task("arm_lift_earth");
+    let mut spec = t.spec.clone();
+    spec.model.joints[2].passive.stiffness = f64::NAN; // after validation: the solver must catch it itself
+    let planned = plan::plan(&spec, SolverKind::Structured, &t.settings, &mut |_| {}).unwrap();
+    assert!(!planned.converged());
+    let reason = planned.outcome.reason.to_string();
+    assert!(reason.contains("joint \"") && reason.contains("t = ") && reason.contains("NaN"), "{reason}");
+}

@@ -159,6 +159,17 @@ pub fn text_table(s: &Summary) -> String {
         s.objective,
         s.initial_guess_objective
     );
+    if s.starts.len() > 1 {
+        let each: Vec<String> = s
+            .starts
+            .iter()
+            .map(|r| {
+                let how = if r.converged { format!("{:.6e}", r.objective) } else { format!("not converged ({})", r.reason) };
+                format!("#{} {how} in {} iterations, {:.3} s", r.index, r.iterations, r.solve_seconds)
+            })
+            .collect();
+        let _ = writeln!(out, "{} starts, kept #{}: {}", s.starts.len(), s.best_start, each.join("; "));
+    }
     let width = s.joints.iter().map(|j| j.name.len()).max().unwrap_or(5).max(5);
     let _ = writeln!(out, "{:width$}  {:>12}  {:>8}  {:>10}", "joint", "peak |τ|", "at (s)", "limit");
     for j in &s.joints {

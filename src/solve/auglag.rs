@@ -157,7 +157,8 @@ impl<'a> AugmentedLagrangian<'a> {
         if self.eval.r.len() != d.n_res || self.eval.h.len() != d.n_eq || self.eval.g.len() != d.n_ineq {
             return Err(EvalError::Failed("evaluate changed the length of r, h or g".into()));
         }
-        if let Some(what) = self.eval.first_non_finite(want_jac) {
+        let problem = &*self.problem;
+        if let Some(what) = self.eval.first_non_finite(want_jac, &|family, i| problem.row_name(family, i)) {
             return Err(EvalError::NonFinite(format!("non-finite {what} (evaluation {})", self.evaluations)));
         }
         self.evaluated = if want_jac { Evaluated::ValuesAndJacobians } else { Evaluated::Values };

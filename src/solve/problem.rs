@@ -70,6 +70,17 @@ pub struct Scales {
     pub ineq: Vec<f64>,
 }
 
+/// The three kinds of rows of a problem.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RowFamily {
+    /// A residual of the objective, `r`.
+    Residual,
+    /// An equality, `h`.
+    Equality,
+    /// An inequality, `g`.
+    Inequality,
+}
+
 /// Values (and, when asked, Jacobians) at one point. Built once per solve by [`Evaluation::new`]; the
 /// problem overwrites `r`, `h`, `g` and, when `want_jac`, the Jacobians' values (which the solver zeroes
 /// before the call, so a problem may accumulate into them with [`SparseMatrix::add`]).
@@ -122,19 +133,21 @@ impl Evaluation {
         0.5 * self.r.iter().map(|v| v * v).sum::<f64>()
     }
 
-    /// The first non-finite entry, described (`None` if all values are finite).
-    pub fn first_non_finite(&self, with_jacobians: bool) -> Option<String> {
-        let vectors = [("r", &self.r), ("h", &self.h), ("g", &self.g)];
-        for (name, v) in vectors {
+    /// The first non-finite entry, described with `name(family, row)` (`None` if all values are finite).
+    pub fn first_non_finite(&self, with_jacobians: bool, name: &dyn Fn(RowFamily, usize) -> String) -> Option<String> {
+        let vectors = [(RowFamily::Residual, &self.r), (RowFamily::Equality, &self.h), (RowFamily::Inequality, &self.g)];
+        for (family, v) in vectors {
             if let Some(i) = v.iter().position(|x| !x.is_finite()) {
-                return Some(format!("{name}[{i}] = {}", v[i]));
+                return Some(format!("{} = {}", name(family, i), v[i]));
             }
         }
         if with_jacobians {
-            for (name, m) in [("∂r/∂x", &self.jr), ("∂h/∂x", &self.jh), ("∂g/∂x", &self.jg)] {
+            let jacobians = [(RowFamily::Residual, &self.jr), (RowFamily::Equality, &self.jh), (RowFamily::Inequality, &self.jg)];
+            for (family, m) in jacobians {
                 for i in 0..m.nrows() {
                     if let Some(p) = m.row_values(i).iter().position(|x| !x.is_finite()) {
-                        return Some(format!("{name} row {i}, column {} = {}", m.row_cols(i)[p], m.row_values(i)[p]));
+                        let (col, v) = (m.row_cols(i)[p], m.row_values(i)[p]);
+                        return Some(format!("the derivative of {} by unknown {col} = {v}", name(family, i)));
                     }
                 }
             }
@@ -167,6 +180,15 @@ pub trait Problem {
     /// Per-constraint scales for the violation tolerance (default: all ones).
     fn scales(&self) -> Scales {
         Scales::default()
+    }
+
+    /// A human-readable name of any row (default: "residual i" or [`Problem::constraint_name`]).
+    fn row_name(&self, family: RowFamily, index: usize) -> String {
+        match family {
+            RowFamily::Residual => format!("residual {index}"),
+            RowFamily::Equality => self.constraint_name(ConstraintKind::Equality, index),
+            RowFamily::Inequality => self.constraint_name(ConstraintKind::Inequality, index),
+        }
     }
 
     /// A human-readable name, e.g. "torque limit of joint elbow at t = 0.41 s".

@@ -497,7 +497,7 @@ fn solve_evaluation_errors_are_values() {
         let mut nan = Faulty { nan_at_start: true, fail_after: usize::MAX, calls: 0 };
         let o = solver.solve(&mut nan, &[0.0, 0.0], &Settings::default(), &mut |_| {});
         let StopReason::EvaluationError(m) = &o.reason else { panic!("{}", o.reason) };
-        assert!(m.contains("r[0]") && m.contains("NaN"), "{m}");
+        assert!(m.contains("residual 0") && m.contains("NaN"), "{m}");
         assert!(!o.converged);
 
         let mut failing = Faulty { nan_at_start: false, fail_after: 4, calls: 0 };

@@ -23,7 +23,7 @@ mod objective;
 use super::spec::{Objective, Spec};
 use crate::dynamics::point_force::{add_generalized_force, generalized_force_derivative, path_dofs, point_jacobian};
 use crate::dynamics::{kinematics, rnea::rnea, rnea_derivatives::rnea_derivatives, Data};
-use crate::solve::{ConstraintKind, Dims, Evaluation, Patterns, Problem, Scales, SymmetricMatrix};
+use crate::solve::{ConstraintKind, Dims, Evaluation, Patterns, Problem, RowFamily, Scales, SymmetricMatrix};
 use crate::spatial::{Force, Vec3};
 use crate::trajectory::bspline::{BasisAt, CubicBSpline, Nodes};
 pub use constraints::IneqRow;
@@ -634,6 +634,19 @@ impl Problem for Transcription<'_> {
         Scales {
             eq: vec![1.0; self.contact_nodes.t.len() * self.n_eq_node],
             ineq: (0..nn).flat_map(|_| per_node.iter().copied()).collect(),
+        }
+    }
+
+    fn row_name(&self, family: RowFamily, index: usize) -> String {
+        match family {
+            RowFamily::Residual => {
+                let nv = self.layout.nv;
+                let (k, l) = (index / nv, index % nv);
+                let joint = &self.spec.model.joints[l + 1].name;
+                format!("the objective's torque residual of joint \"{joint}\" at t = {:.3} s (node {k})", self.nodes.t[k])
+            }
+            RowFamily::Equality => self.constraint_name(ConstraintKind::Equality, index),
+            RowFamily::Inequality => self.constraint_name(ConstraintKind::Inequality, index),
         }
     }
 
