@@ -57,7 +57,8 @@ fn huge_finite_values_are_refused_naming_the_state_and_the_quantity() {
 fn the_largest_states_allowed_give_finite_results() {
     let model = common::load_reference_urdf(&common::reference_dir().join("models/double_pendulum.urdf"));
     let path = std::env::temp_dir().join(format!("mintorque-states-edge-{}.json", std::process::id()));
-    let text = state("[1e3, -1e3]", "[1e4, -1e4]", "[1e6, -1e6]").replace("\"a\": [1e6, -1e6]", "\"a\": [1e6, -1e6], \"tau_rand\": [1e9, -1e9]");
+    let text = state("[1e3, -1e3]", "[1e4, -1e4]", "[1e6, -1e6]")
+        .replace("\"a\": [1e6, -1e6]", "\"a\": [1e6, -1e6], \"tau_rand\": [1e9, -1e9]");
     std::fs::write(&path, text).unwrap();
     let file = StatesFile::load(&path, &model).unwrap_or_else(|e| panic!("{e}"));
     let results = file.evaluate(&model, &model.gravity).unwrap_or_else(|e| panic!("{e}"));

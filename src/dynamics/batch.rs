@@ -24,7 +24,11 @@ pub fn check_gravity(g: &Vec3, origin: &str, field: &str) -> Result<()> {
     if g.iter().all(|x| x.is_finite() && x.abs() <= MAX_GRAVITY) {
         return Ok(());
     }
-    Err(Error::input(origin, field, format!("must be three numbers from -{MAX_GRAVITY} to {MAX_GRAVITY} m/s², got [{}, {}, {}]", g.x, g.y, g.z)))
+    Err(Error::input(
+        origin,
+        field,
+        format!("must be three numbers from -{MAX_GRAVITY} to {MAX_GRAVITY} m/s², got [{}, {}, {}]", g.x, g.y, g.z),
+    ))
 }
 
 /// The bound of `RANGES` for quantity `name`.
@@ -151,12 +155,7 @@ impl StatesFile {
                 Some(t) => Some(reorder(t, s, "tau_rand")?),
                 None => None,
             };
-            states.push(State {
-                q: reorder(&st.q, s, "q")?,
-                v: reorder(&st.v, s, "v")?,
-                a: reorder(&st.a, s, "a")?,
-                tau_rand,
-            });
+            states.push(State { q: reorder(&st.q, s, "q")?, v: reorder(&st.v, s, "v")?, a: reorder(&st.a, s, "a")?, tau_rand });
         }
         let joint_names = raw.joints.into_iter().map(|j| j.name).collect();
         Ok(StatesFile { origin, to_model, joint_names, gravity, states })

@@ -52,7 +52,8 @@ fn apply_one(text: &str, m: &Mutation) -> String {
         }),
         Mutation::DuplicateLine(p) => edit_lines(text, p, |lines, i| lines.insert(i, lines[i].clone())),
         Mutation::SwapDigits(p) => {
-            let pairs: Vec<usize> = spans(text, |b| b.is_ascii_digit()).iter().filter(|r| r.len() >= 2).map(|r| r.start).collect();
+            let pairs: Vec<usize> =
+                spans(text, |b| b.is_ascii_digit()).iter().filter(|r| r.len() >= 2).map(|r| r.start).collect();
             let Some(k) = pick(p, pairs.len()) else { return text.to_string() };
             let mut bytes = text.as_bytes().to_vec();
             bytes.swap(pairs[k], pairs[k] + 1);

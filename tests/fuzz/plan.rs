@@ -76,7 +76,7 @@ fn task_reader_and_short_plans() {
     let files = seeds("examples", ".toml");
     let shortened: Vec<String> = files.iter().map(|(_, t)| short(t)).collect();
     let strategy = (select((0..files.len()).collect::<Vec<_>>()), mutations(), prop::bool::weighted(0.15));
-    run("task file", 400, strategy, |(k, edits, plan_it)| {
+    run("task file", 3000, strategy, |(k, edits, plan_it)| {
         let (path, text) = (files[k].0.clone(), apply(if plan_it { &shortened[k] } else { &files[k].1 }, &edits));
         let input = text.clone();
         let bound = if plan_it { PLAN_BOUND } else { PARSE_BOUND };
@@ -126,7 +126,7 @@ fn plan_directory_reader() {
     let template = template_plan();
     let names: Vec<String> = template.keys().filter(|n| !n.ends_with(".png") && !n.ends_with(".html")).cloned().collect();
     let strategy = (select(names.clone()), mutations(), prop::bool::weighted(0.8));
-    run("plan directory", 300, strategy, |(name, edits, rehash)| {
+    run("plan directory", 2000, strategy, |(name, edits, rehash)| {
         let mut files = template.clone();
         let text = String::from_utf8_lossy(&files[&name]).into_owned();
         let mutated = apply(&text, &edits);

@@ -37,7 +37,7 @@ fn read_urdf_mimic(text: &str, origin: &str) -> mintorque::Result<Model> {
 fn urdf_reader() {
     let files = urdf_seeds();
     let strategy = (select((0..files.len()).collect::<Vec<_>>()), mutations(), any::<bool>());
-    run("urdf", 600, strategy, |(k, edits, mimic)| {
+    run("urdf", 5000, strategy, |(k, edits, mimic)| {
         let (path, text) = &files[k];
         let read = if mimic { read_urdf_mimic } else { read_urdf };
         model_case(apply(text, &edits), shown(path), read)
@@ -48,7 +48,7 @@ fn urdf_reader() {
 fn figure_reader() {
     let files = seeds("models", ".figure.toml");
     let strategy = (select((0..files.len()).collect::<Vec<_>>()), mutations());
-    run("figure file", 600, strategy, |(k, edits)| {
+    run("figure file", 5000, strategy, |(k, edits)| {
         let (path, text) = &files[k];
         model_case(apply(text, &edits), shown(path), figure::parse)
     });
@@ -66,7 +66,7 @@ fn states_reader() {
         })
         .collect();
     let strategy = (select((0..files.len()).collect::<Vec<_>>()), mutations());
-    run("states file", 300, strategy, |(k, edits)| {
+    run("states file", 3000, strategy, |(k, edits)| {
         let ((path, text), model) = (&files[k], models[k].clone());
         let (text, origin) = (apply(text, &edits), shown(path));
         guarded(PARSE_BOUND, move || match StatesFile::parse(&text, &origin, &model) {

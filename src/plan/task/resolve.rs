@@ -101,10 +101,11 @@ fn load_model(m: &ModelSection, base: &Path, origin: &str) -> Result<Model> {
     if m.human.is_none() && (m.stature.is_some() || m.mass.is_some()) {
         return Err(Error::task(origin, "model.stature", "stature and mass scale a built-in human only"));
     }
-    // A model file that cannot be read is the task's field at fault; one that reads badly names itself.
+    // An error in the model file is reported as the task's field too (the model's own message names its
+    // file and line).
     let unreadable = |field: &str, e: Error| match e {
         Error::Io { path, error } => Error::task(origin, field, format!("cannot read {}: {error}", path.display())),
-        other => other,
+        other => Error::task(origin, field, other.to_string()),
     };
     if let Some(p) = &m.urdf {
         return model::urdf::load(&base.join(p)).map_err(|e| unreadable("model.urdf", e));
