@@ -276,7 +276,26 @@ fn dynamics_never_prints_null_for_a_non_finite_result() {
         run(mintorque().arg("dynamics").arg(root().join("models/double_pendulum.urdf")).arg("--states").arg(&states));
     assert_eq!(code, 1, "{stdout}");
     assert!(!stdout.contains("null"), "{stdout}");
-    assert!(stderr.contains("huge.json") && stderr.contains("states[1]") && stderr.contains("not finite"), "{stderr}");
+    assert!(stderr.contains("huge.json") && stderr.contains("states[1].v[0]") && stderr.contains("1e4"), "{stderr}");
+}
+
+#[test]
+fn the_panda_with_its_mimic_finger_needs_mimic_independent() {
+    let reference = root().join("tests/data/reference");
+    let (model, states) = (reference.join("models/panda.urdf"), reference.join("panda.json"));
+    let (code, stdout, stderr) = run(mintorque().arg("dynamics").arg(&model).arg("--states").arg(&states));
+    assert_eq!(code, 1, "{stdout}");
+    assert!(stderr.contains("panda.urdf") && stderr.contains("<mimic>") && stderr.contains("--mimic independent"), "{stderr}");
+    let (code, stdout, stderr) =
+        run(mintorque().arg("dynamics").arg(&model).arg("--states").arg(&states).args(["--mimic", "independent"]));
+    assert_eq!(code, 0, "{stderr}");
+    let json: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    assert_eq!(json["states"].as_array().map(Vec::len), Some(20), "{stdout}");
+    let out = scratch("panda-figure").join("panda.figure.toml");
+    let (code, _, stderr) = run(mintorque().arg("figure").arg(&model).arg("--out").arg(&out).args(["--mimic", "independent"]));
+    assert_eq!(code, 0, "{stderr}");
+    let (code, _, stderr) = run(mintorque().arg("figure").arg(&model).arg("--out").arg(&out));
+    assert!(code == 1 && stderr.contains("--mimic independent"), "{stderr}");
 }
 
 #[test]

@@ -34,3 +34,33 @@ fn wrong_length_unknown_joint_and_non_finite_values_are_named() {
     let e = error_of("{\"joints\": [", "syntax");
     assert!(e.contains("line 1"), "{e}");
 }
+
+fn state(q: &str, v: &str, a: &str) -> String {
+    let ok = joints(&["shoulder", "elbow"]);
+    format!("{{\"joints\": [{ok}], \"states\": [{{\"q\": [0, 0], \"v\": [0, 0], \"a\": [0, 0]}}, {{\"q\": {q}, \"v\": {v}, \"a\": {a}}}]}}")
+}
+
+#[test]
+fn huge_finite_values_are_refused_naming_the_state_and_the_quantity() {
+    let e = error_of(&state("[0, 1e4]", "[0, 0]", "[0, 0]"), "huge-q");
+    assert!(e.contains("states[1].q[1]") && e.contains("1e3") && e.contains("rad or m"), "{e}");
+    let e = error_of(&state("[0, 0]", "[-1e300, 0]", "[0, 0]"), "huge-v");
+    assert!(e.contains("states[1].v[0]") && e.contains("1e4"), "{e}");
+    let e = error_of(&state("[0, 0]", "[0, 0]", "[0, 2e6]"), "huge-a");
+    assert!(e.contains("states[1].a[1]") && e.contains("1e6"), "{e}");
+    let ok = joints(&["shoulder", "elbow"]);
+    let e = error_of(&format!("{{\"joints\": [{ok}], \"gravity\": [0, 0, -1e308], \"states\": []}}"), "huge-g");
+    assert!(e.contains("gravity") && e.contains("1000 m/s²"), "{e}");
+}
+
+#[test]
+fn the_largest_states_allowed_give_finite_results() {
+    let model = common::load_reference_urdf(&common::reference_dir().join("models/double_pendulum.urdf"));
+    let path = std::env::temp_dir().join(format!("mintorque-states-edge-{}.json", std::process::id()));
+    let text = state("[1e3, -1e3]", "[1e4, -1e4]", "[1e6, -1e6]")
+        .replace("\"a\": [1e6, -1e6]", "\"a\": [1e6, -1e6], \"tau_rand\": [1e9, -1e9]");
+    std::fs::write(&path, text).unwrap();
+    let file = StatesFile::load(&path, &model).unwrap_or_else(|e| panic!("{e}"));
+    let results = file.evaluate(&model, &model.gravity).unwrap_or_else(|e| panic!("{e}"));
+    assert!(results.iter().all(|r| r.first_non_finite().is_none()));
+}

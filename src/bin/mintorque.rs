@@ -83,6 +83,8 @@ enum Command {
         /// Output file: .urdf for URDF, .toml for a figure file.
         #[arg(long, short)]
         out: PathBuf,
+        #[command(flatten)]
+        read: ModelArgs,
     },
     /// List the bundled examples (the paper's experiments), one line each.
     Examples,
@@ -109,7 +111,24 @@ enum Command {
         /// Print the median ns per call of each algorithm on this model instead.
         #[arg(long)]
         bench: bool,
+        #[command(flatten)]
+        read: ModelArgs,
     },
+}
+
+/// How a model file given by path is read.
+#[derive(clap::Args, Clone, Copy)]
+struct ModelArgs {
+    /// A URDF `<mimic>` joint (one that follows another): refuse the file, or read the joint as an
+    /// independent degree of freedom (the coupling dropped).
+    #[arg(long, value_enum, default_value_t = MimicArg::Refuse)]
+    mimic: MimicArg,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum MimicArg {
+    Refuse,
+    Independent,
 }
 
 #[derive(Clone, Copy, clap::ValueEnum)]
@@ -133,8 +152,19 @@ fn exit(ok: bool) -> ExitCode {
     }
 }
 
-fn load_model(path: &Path) -> Result<mintorque::Model> {
-    Ok(mintorque::model::load_any(path)?)
+/// Reads a model file as `read` says; a refused `<mimic>` says which option reads it.
+fn load_model(path: &Path, read: ModelArgs) -> Result<mintorque::Model> {
+    use mintorque::model::urdf::{Mimic, Options};
+    let mimic = match read.mimic {
+        MimicArg::Refuse => Mimic::Refuse,
+        MimicArg::Independent => Mimic::Independent,
+    };
+    mintorque::model::load_any_with(path, Options { mimic }).map_err(|e| match &e {
+        mintorque::Error::Model { element, .. } if element.ends_with("<mimic>") => {
+            anyhow::Error::new(e).context("pass `--mimic independent` to read a <mimic> joint as an independent joint")
+        }
+        _ => e.into(),
+    })
 }
 
 /// A progress observer: a spinner on a terminal, a line a second otherwise, nothing with `quiet`.
@@ -210,10 +240,10 @@ fn run_export(dir: &Path, format: &str, out: Option<PathBuf>) -> Result<()> {
     Ok(())
 }
 
-fn run_figure(model: Option<PathBuf>, human: Option<String>, stature: f64, mass: f64, out: &Path) -> Result<()> {
+fn run_figure(model: Option<PathBuf>, read: ModelArgs, human: Option<String>, stature: f64, mass: f64, out: &Path) -> Result<()> {
     use mintorque::model::{figure, human as jack, urdf_export};
     let model = match (model, human) {
-        (Some(path), None) => load_model(&path)?,
+        (Some(path), None) => load_model(&path, read)?,
         (None, Some(name)) => {
             jack::Structure::from_name(&name)?.build(jack::HumanParams { stature_m: stature, mass_kg: mass })?
         }
@@ -252,25 +282,14 @@ fn run_simulate(path: &Path, steps: u64) -> Result<bool> {
     Ok(converged)
 }
 
-/// The first non-finite number of a state's results, as `quantity[index]`.
-fn non_finite_result(r: &mintorque::dynamics::batch::StateResult) -> Option<String> {
-    let first = |name: &str, v: &[f64]| plan_dir::finite::first_non_finite(v).map(|(i, x)| format!("{name}[{i}] = {x}"));
-    let rows = |name: &str, m: &[Vec<f64>]| m.iter().enumerate().find_map(|(i, row)| first(&format!("{name}[{i}]"), row));
-    first("tau", &r.tau)
-        .or_else(|| rows("dtau_dq", &r.dtau_dq))
-        .or_else(|| rows("dtau_dv", &r.dtau_dv))
-        .or_else(|| rows("M", &r.m))
-        .or_else(|| r.ddq.as_deref().and_then(|a| first("ddq", a)))
-        .or_else(|| first("root_wrench", &r.root_wrench))
-}
-
-fn run_dynamics(model: &Path, states: Option<PathBuf>, gravity: Option<Vec<f64>>, do_bench: bool) -> Result<()> {
-    let model = load_model(model)?;
+fn run_dynamics(model: &Path, read: ModelArgs, states: Option<PathBuf>, gravity: Option<Vec<f64>>, do_bench: bool) -> Result<()> {
+    let model = load_model(model, read)?;
     let file = states.as_deref().map(|p| StatesFile::load(p, &model)).transpose()?;
     let g = match (&gravity, file.as_ref().and_then(|f| f.gravity)) {
         (Some(g), _) => {
-            anyhow::ensure!(g.iter().all(|x| x.is_finite()), "--gravity: must be three finite numbers (m/s²)");
-            Vec3::new(g[0], g[1], g[2])
+            let g = Vec3::new(g[0], g[1], g[2]);
+            mintorque::dynamics::batch::check_gravity(&g, "--gravity", "GX GY GZ")?;
+            g
         }
         (None, Some(g)) => g,
         (None, None) => model.gravity,
@@ -279,11 +298,8 @@ fn run_dynamics(model: &Path, states: Option<PathBuf>, gravity: Option<Vec<f64>>
         println!("{}", serde_json::to_string_pretty(&bench::bench(&model, &g, 1000))?);
         return Ok(());
     }
-    let (file, path) = (file.context("--states is required")?, states.unwrap_or_default());
-    let results = file.evaluate(&model, &g);
-    if let Some((k, what)) = results.iter().enumerate().find_map(|(k, r)| non_finite_result(r).map(|w| (k, w))) {
-        anyhow::bail!("{}: states[{k}]: the result is not finite: {what} (nothing printed)", path.display());
-    }
+    let file = file.context("--states is required")?;
+    let results = file.evaluate(&model, &g)?;
     let json =
         serde_json::json!({ "model": model.name, "joints": file.joint_names, "gravity": [g.x, g.y, g.z], "states": results });
     println!("{}", serde_json::to_string_pretty(&json)?);
@@ -310,8 +326,8 @@ fn run(cli: Cli) -> Result<ExitCode> {
             report::viewer::open_in_browser(&page);
             Ok(ExitCode::SUCCESS)
         }
-        Command::Figure { model, human, stature, mass, out } => {
-            run_figure(model, human, stature, mass, &out).map(|()| ExitCode::SUCCESS)
+        Command::Figure { model, human, stature, mass, out, read } => {
+            run_figure(model, read, human, stature, mass, &out).map(|()| ExitCode::SUCCESS)
         }
         Command::Examples => {
             for e in mintorque::plan::examples::ALL {
@@ -321,8 +337,8 @@ fn run(cli: Cli) -> Result<ExitCode> {
             Ok(ExitCode::SUCCESS)
         }
         Command::Simulate { plan: path, steps } => Ok(exit(run_simulate(&path, steps)?)),
-        Command::Dynamics { model, states, gravity, bench } => {
-            run_dynamics(&model, states, gravity, bench).map(|()| ExitCode::SUCCESS)
+        Command::Dynamics { model, states, gravity, bench, read } => {
+            run_dynamics(&model, read, states, gravity, bench).map(|()| ExitCode::SUCCESS)
         }
     }
 }

@@ -24,9 +24,14 @@ use std::path::Path;
 /// Reads a model file of either format, chosen by extension: `.urdf` or `.xml` for URDF, `.toml` for a
 /// figure file (`docs/figure-file.md`).
 pub fn load_any(path: &Path) -> Result<Model> {
+    load_any_with(path, urdf::Options::default())
+}
+
+/// [`load_any`] with the URDF reader's options (`<mimic>`); a figure file has nothing they apply to.
+pub fn load_any_with(path: &Path, options: urdf::Options) -> Result<Model> {
     let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
     match ext.as_deref() {
-        Some("urdf" | "xml") => urdf::load(path),
+        Some("urdf" | "xml") => urdf::load_with(path, options),
         Some("toml") => figure::load(path),
         other => Err(Error::model(
             path.display().to_string(),

@@ -54,6 +54,10 @@ fn short(v: f64) -> String {
 }
 
 /// The ranges, SI. Positions and lengths within a kilometre, masses up to ten tonnes.
+/// The least fraction of the figure's mass a degree of freedom must move (less, and H(q) is singular in
+/// floating point).
+pub const MIN_MOVED_MASS_FRACTION: f64 = 1e-9;
+
 pub mod ranges {
     use super::Range;
     /// A body's or payload's mass.
@@ -149,11 +153,16 @@ impl Model {
             let p = self.joints[i].parent;
             subtree_mass[p] += subtree_mass[i];
         }
-        if let Some(i) = (1..self.bodies.len()).find(|&i| subtree_mass[i] <= 0.0) {
+        // "Some": more than a billionth of the figure's mass — 1e-308 kg is no mass in floating point.
+        let least = MIN_MOVED_MASS_FRACTION * subtree_mass[0];
+        if let Some(i) = (1..self.bodies.len()).find(|&i| subtree_mass[i] <= least) {
             return problem(
                 Culprit::Joint(i),
                 format!("joint \"{}\"", self.joints[i].name),
-                "moves no mass: the joint-space inertia matrix would be singular".into(),
+                format!(
+                    "moves no mass ({:e} kg, at most {MIN_MOVED_MASS_FRACTION:e} of the figure's): the joint-space inertia matrix would be singular",
+                    subtree_mass[i]
+                ),
             );
         }
         if let Err(m) = ranges::GRAVITY.check_all(self.gravity.as_slice()) {

@@ -8,8 +8,9 @@ use super::schema::{Gravity, TaskFile};
 use crate::error::{Error, Result};
 use crate::model::validate::{ranges, Range};
 
-/// Seconds a motion may last.
-pub const DURATION: Range = Range { min: 0.0, max: 1e4, unit: "s" };
+/// Seconds a motion may last: a millisecond at least (a B-spline cannot split less into knot spans
+/// that the solver can tell apart), at most 10 000 s.
+pub const DURATION: Range = Range { min: 1e-3, max: 1e4, unit: "s" };
 /// B-spline control points per joint: more would not fit in memory (the banded Gauss–Newton matrix grows
 /// with N × joints²) nor finish.
 pub const MAX_CONTROL_POINTS: usize = 2000;

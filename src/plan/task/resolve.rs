@@ -101,11 +101,17 @@ fn load_model(m: &ModelSection, base: &Path, origin: &str) -> Result<Model> {
     if m.human.is_none() && (m.stature.is_some() || m.mass.is_some()) {
         return Err(Error::task(origin, "model.stature", "stature and mass scale a built-in human only"));
     }
+    // An error in the model file is reported as the task's field too (the model's own message names its
+    // file and line).
+    let unreadable = |field: &str, e: Error| match e {
+        Error::Io { path, error } => Error::task(origin, field, format!("cannot read {}: {error}", path.display())),
+        other => Error::task(origin, field, other.to_string()),
+    };
     if let Some(p) = &m.urdf {
-        return model::urdf::load(&base.join(p));
+        return model::urdf::load(&base.join(p)).map_err(|e| unreadable("model.urdf", e));
     }
     if let Some(p) = &m.figure {
-        return model::load_any(&base.join(p));
+        return model::load_any(&base.join(p)).map_err(|e| unreadable("model.figure", e));
     }
     load_human(m.human.as_deref().unwrap_or_default(), m.stature, m.mass, origin)
 }
