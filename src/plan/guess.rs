@@ -48,7 +48,8 @@ pub(super) fn initial_contact_forces(problem: &mut Transcription, x: &mut [f64])
         .map(|(j, m)| layout.lambda_var(j, m))
         .collect();
     let dims = problem.dims();
-    let fail = |e: String| Error::task("task", "initial guess", e);
+    let origin = problem.spec.origin.clone();
+    let fail = |e: String| Error::task(&origin, "initial guess", e);
     let mut eval = solve::Evaluation::new(dims, &problem.jacobian_patterns()).map_err(|e| fail(e.to_string()))?;
     problem.evaluate(x, true, &mut eval).map_err(fail)?;
     let m = columns.len();

@@ -215,8 +215,8 @@ pub fn check_between_nodes(spec: &Spec, x: &[f64], per_span: usize) -> Result<Op
         return Ok(None);
     }
     let mut eval = solve::Evaluation::new(dims, &grid.jacobian_patterns())
-        .map_err(|e| Error::task("task", "transcription", e.to_string()))?;
-    grid.evaluate(x, false, &mut eval).map_err(|e| Error::task("task", "transcription", e))?;
+        .map_err(|e| Error::task(&spec.origin, "transcription", e.to_string()))?;
+    grid.evaluate(x, false, &mut eval).map_err(|e| Error::task(&spec.origin, "transcription", e))?;
     let scales = grid.scales();
     let mut worst: Option<(f64, solve::ConstraintKind, usize)> = None;
     let mut consider = |v: f64, kind, i| {

@@ -87,7 +87,7 @@ fn next_signed(state: &mut u64) -> f64 {
 /// The starting points: `x0` and `multi.starts − 1` perturbations of it.
 pub(super) fn guesses(spec: &Spec, problem: &mut Transcription, x0: &[f64], multi: &MultiStart) -> Result<Vec<Vec<f64>>> {
     if multi.starts == 0 {
-        return Err(Error::task("task", "solver.starts", "must be at least 1"));
+        return Err(Error::task(&spec.origin, "solver.starts", "must be at least 1"));
     }
     let mut all = vec![x0.to_vec()];
     for k in 1..multi.starts {

@@ -27,11 +27,11 @@ pub fn plan_with_starts(
     multi: &MultiStart,
     observer: &mut dyn FnMut(&Progress),
 ) -> Result<Plan> {
-    validate(spec, "task")?;
+    validate(spec, &spec.origin)?;
     let started = Instant::now();
     let mut problem = Transcription::new(spec)?;
     let x0 = initial_x(spec, &mut problem)?;
-    let initial_objective = objective_at(&mut problem, &x0).map_err(|e| Error::task("task", "initial guess", e))?;
+    let initial_objective = objective_at(&mut problem, &x0).map_err(|e| Error::task(&spec.origin, "initial guess", e))?;
     let guesses = multistart::guesses(spec, &mut problem, &x0, multi)?;
     let deadline = settings.time_limit.map(|t| started + Duration::from_secs_f64(t));
     let runs = multistart::run_all(&guesses, observer, |x, observer| run_start(spec, solver, settings, deadline, x, observer))?;

@@ -101,6 +101,8 @@ pub enum InitialGuess {
 
 #[derive(Clone, Debug)]
 pub struct Spec {
+    /// Where the spec came from, quoted in errors: the task file's path, or "spec" for one built in code.
+    pub origin: String,
     pub model: Model,
     /// World gravity (m/s²).
     pub gravity: Vec3,
@@ -131,6 +133,7 @@ impl Spec {
     pub fn new(model: Model, start: Vec<f64>, goal: Vec<f64>, duration: f64) -> Spec {
         let nv = model.nv();
         Spec {
+            origin: "spec".into(),
             gravity: model.gravity,
             model,
             duration,

@@ -29,6 +29,7 @@ pub fn resolve(file: &TaskFile, base: &Path, origin: &str) -> Result<Spec> {
     let initial_guess = guess::initial_guess(&model, file, (&start, &goal), base, origin)?;
     let c = &file.constraints;
     Ok(Spec {
+        origin: origin.to_string(),
         gravity,
         duration: m.duration,
         start,
