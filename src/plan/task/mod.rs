@@ -10,6 +10,7 @@ mod check;
 mod guess;
 mod resolve;
 pub mod schema;
+mod up;
 mod view;
 
 pub use check::{DURATION, MAX_CONTROL_POINTS, MAX_NODES_PER_SPAN};
@@ -63,7 +64,9 @@ impl Task {
         let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
         let spec = resolve(&file, &base, &origin)?;
         super::validate(&spec, &origin)?;
-        let warnings = resolve::radian_warnings(&file, &spec.model, &origin);
+        let mut warnings = resolve::radian_warnings(&file, &spec.model, &origin);
+        let up = up::axis(&file.environment.up, &origin)?;
+        warnings.extend(up::rest_pose_warning(&spec.model, &up, &origin));
         let s = &file.solver.settings;
         let settings = Settings {
             tol_stationarity: s.tolerance,

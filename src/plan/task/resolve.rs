@@ -15,7 +15,7 @@ use std::path::Path;
 pub fn resolve(file: &TaskFile, base: &Path, origin: &str) -> Result<Spec> {
     let (mut model, base_posture) = figure(&file.model, &file.motion.base, base, origin)?;
     let env = &file.environment;
-    let gravity = gravity(&env.gravity, origin)?;
+    let gravity = gravity(&env.gravity, &super::up::axis(&env.up, origin)?, origin)?;
     payloads(&mut model, &env.payload, origin)?;
     passive(&mut model, &env.passive, origin)?;
     limits(&mut model, &file.constraints, origin)?;
@@ -49,7 +49,7 @@ pub fn resolve(file: &TaskFile, base: &Path, origin: &str) -> Result<Spec> {
     })
 }
 
-/// Gravity presets (m/s², −z): earth 9.81, mars 3.71, moon 1.62, space 0.
+/// Gravity presets (m/s², along −up, `environment.up`): earth 9.81, mars 3.71, moon 1.62, space 0.
 pub fn gravity_preset(name: &str) -> Option<f64> {
     match name {
         "earth" => Some(9.81),
@@ -141,10 +141,10 @@ fn load_human(name: &str, stature: Option<f64>, mass: Option<f64>, origin: &str)
     structure.build(human_params(stature, mass)).map_err(in_task)
 }
 
-fn gravity(g: &Gravity, origin: &str) -> Result<Vec3> {
+fn gravity(g: &Gravity, up: &Vec3, origin: &str) -> Result<Vec3> {
     match g {
         Gravity::Preset(name) => match gravity_preset(name) {
-            Some(g) => Ok(Vec3::new(0.0, 0.0, -g)),
+            Some(g) => Ok(-up * g),
             None => {
                 Err(Error::task(origin, "environment.gravity", format!("unknown preset \"{name}\": expected {GRAVITY_EXPECTED}")))
             }

@@ -131,11 +131,14 @@ impl Default for Gravity {
     }
 }
 
-#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct EnvironmentSection {
     #[serde(default)]
     pub gravity: Gravity,
+    /// The world axis that is up ("+z" default, "+y", …): gravity presets pull along −up.
+    #[serde(default = "plus_z")]
+    pub up: String,
     /// Masses held rigidly at frames (a barbell in the hands).
     #[serde(default)]
     pub payload: Vec<Payload>,
@@ -145,6 +148,16 @@ pub struct EnvironmentSection {
     /// Passive spring/damper per joint, overriding the model's.
     #[serde(default)]
     pub passive: BTreeMap<String, PassiveSpec>,
+}
+
+fn plus_z() -> String {
+    "+z".into()
+}
+
+impl Default for EnvironmentSection {
+    fn default() -> Self {
+        EnvironmentSection { gravity: Gravity::default(), up: plus_z(), payload: vec![], force: vec![], passive: BTreeMap::new() }
+    }
 }
 
 #[derive(Clone, Debug, Serialize, Deserialize)]
