@@ -39,6 +39,9 @@ enum Command {
         /// Override the number of starting points solved in parallel (the best plan is kept).
         #[arg(long)]
         starts: Option<usize>,
+        /// Refine the number of control points until the effort changes by less than 0.5 %.
+        #[arg(long)]
+        refine: bool,
         /// No progress output.
         #[arg(long, short)]
         quiet: bool,
@@ -193,9 +196,9 @@ fn progress(quiet: bool) -> (Option<indicatif::ProgressBar>, impl FnMut(&mintorq
 }
 
 /// Plans a task (overrides applied, settings checked), reporting why it did not converge if it did not.
-fn solve(task: &Task, quiet: bool) -> Result<plan::Plan> {
+fn solve(task: &mut Task, quiet: bool) -> Result<plan::Plan> {
     let (bar, mut observer) = progress(quiet);
-    let planned = plan::plan_with_starts(&task.spec, task.solver, &task.settings, &task.multistart, &mut observer)?;
+    let planned = task.plan(&mut observer)?;
     if let Some(b) = bar {
         b.finish_and_clear();
     }
@@ -206,8 +209,8 @@ fn solve(task: &Task, quiet: bool) -> Result<plan::Plan> {
 }
 
 fn run_plan(task_path: &Path, out: &Path, overrides: &Overrides, quiet: bool, no_plots: bool) -> Result<bool> {
-    let task = plan_dir::overrides::load_task(task_path, overrides)?;
-    let planned = solve(&task, quiet)?;
+    let mut task = plan_dir::overrides::load_task(task_path, overrides)?;
+    let planned = solve(&mut task, quiet)?;
     let contents = PlanContents::from_task(&task, &planned, no_plots)?;
     plan_dir::write(out, &contents, &WriteOptions::default())?;
     let (summary, ergonomics) = (contents.summary.as_ref().context("a planned task has a summary")?, &contents.ergonomics);
@@ -266,8 +269,8 @@ fn run_simulate(path: &Path, steps: u64) -> Result<bool> {
         let converged = loaded.record.converged;
         (task, x, format!("plan of {}{}", path.display(), if converged { "" } else { " (NOT converged)" }), converged)
     } else {
-        let task = plan_dir::overrides::load_task(path, &Overrides::default())?;
-        let planned = solve(&task, true)?;
+        let mut task = plan_dir::overrides::load_task(path, &Overrides::default())?;
+        let planned = solve(&mut task, true)?;
         let status = if planned.converged() { "plan converged" } else { "plan NOT converged" };
         let converged = planned.converged();
         (task, planned.x, status.to_string(), converged)
@@ -308,13 +311,13 @@ fn run_dynamics(model: &Path, read: ModelArgs, states: Option<PathBuf>, gravity:
 
 fn run(cli: Cli) -> Result<ExitCode> {
     match cli.command {
-        Command::Plan { task, out, solver, control_points, starts, quiet, no_plots } => {
+        Command::Plan { task, out, solver, control_points, starts, refine, quiet, no_plots } => {
             let solver = solver.map(|s| match s {
                 SolverArg::Structured => SolverKind::Structured,
                 SolverArg::Newton => SolverKind::Newton,
                 SolverArg::AuglagBfgs => SolverKind::AuglagBfgs,
             });
-            Ok(exit(run_plan(&task, &out, &Overrides { solver, control_points, starts }, quiet, no_plots)?))
+            Ok(exit(run_plan(&task, &out, &Overrides { solver, control_points, starts, refine }, quiet, no_plots)?))
         }
         Command::Export { dir, format, out } => run_export(&dir, &format, out).map(|()| ExitCode::SUCCESS),
         Command::View { dir, filmstrip } => {

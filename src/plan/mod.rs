@@ -5,6 +5,7 @@
 pub mod examples;
 mod guess;
 mod multistart;
+mod refine;
 mod run;
 pub mod simulate;
 pub mod spec;
@@ -13,6 +14,7 @@ pub mod transcription;
 
 pub use guess::initial_x;
 pub use multistart::{MultiStart, StartReport};
+pub use refine::{last_change, plan_refined, Level, Refinement};
 pub use run::{plan, plan_with_starts};
 pub use spec::{Balance, Contact, ContactKind, InitialGuess, Objective, PointLoad, Spec};
 pub use transcription::{NodeValues, Transcription};
@@ -65,6 +67,8 @@ pub struct Plan {
     /// Every start's outcome (one entry for a single start), and which one this plan is.
     pub starts: Vec<StartReport>,
     pub best_start: usize,
+    /// The levels of a refinement of N ([`plan_refined`]); empty for a plan at a fixed N.
+    pub refinement: Vec<Level>,
 }
 
 impl Plan {

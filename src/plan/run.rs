@@ -55,6 +55,7 @@ pub fn plan_with_starts(
         worst_between_nodes,
         starts,
         best_start: best,
+        refinement: vec![],
     })
 }
 

@@ -17,6 +17,8 @@ pub struct Overrides {
     pub control_points: Option<usize>,
     /// `solver.starts`.
     pub starts: Option<usize>,
+    /// `discretization.refine = true`.
+    pub refine: bool,
 }
 
 /// Reads and resolves the task at `path` with `overrides` applied, its solver settings checked.
@@ -48,6 +50,9 @@ fn apply(text: &str, path: &Path, overrides: &Overrides) -> Result<Option<String
     if let Some(s) = overrides.solver {
         let name = toml::Value::try_from(s).map_err(|e| Error::task(&origin, "solver.method", e.to_string()))?;
         set("solver", "method", name)?;
+    }
+    if overrides.refine {
+        set("discretization", "refine", toml::Value::Boolean(true))?;
     }
     if let Some(k) = overrides.starts {
         let k = i64::try_from(k).map_err(|_| Error::task(&origin, "--starts", format!("{k} is too large")))?;

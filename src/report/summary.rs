@@ -33,6 +33,10 @@ pub struct Summary {
     /// Every start's effort and outcome (`solver.starts`), and the index of the one this plan is.
     pub starts: Vec<crate::plan::StartReport>,
     pub best_start: usize,
+    /// The levels of the refinement of N (empty when the task fixed N), and the relative change of the
+    /// effort at the last one — the discretisation's error estimate.
+    pub refinement: Vec<crate::plan::Level>,
+    pub effort_change_last_refinement: Option<f64>,
 }
 
 #[derive(Serialize, Debug, Clone)]
@@ -140,6 +144,8 @@ impl Summary {
             contacts,
             starts: plan.starts.clone(),
             best_start: plan.best_start,
+            refinement: plan.refinement.clone(),
+            effort_change_last_refinement: crate::plan::last_change(&plan.refinement),
         }
     }
 }
@@ -159,6 +165,15 @@ pub fn text_table(s: &Summary) -> String {
         s.objective,
         s.initial_guess_objective
     );
+    if s.refinement.len() > 1 {
+        let levels: Vec<String> = s
+            .refinement
+            .iter()
+            .map(|l| format!("{} ({:.6e}{})", l.control_points, l.objective, if l.converged { "" } else { ", not converged" }))
+            .collect();
+        let change = s.effort_change_last_refinement.map_or("unknown".into(), |c| format!("{:.2} %", 100.0 * c));
+        let _ = writeln!(out, "control points refined: {}; effort change at the last refinement {change}", levels.join(" → "));
+    }
     if s.starts.len() > 1 {
         let each: Vec<String> = s
             .starts

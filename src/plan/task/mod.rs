@@ -19,7 +19,7 @@ pub use schema::*;
 pub use view::View;
 
 use super::spec::Spec;
-use super::{MultiStart, SolverKind};
+use super::{MultiStart, Refinement, SolverKind};
 use crate::error::{Error, Result};
 use crate::model::toml_doc::Doc;
 use crate::model::JointKind;
@@ -35,6 +35,8 @@ pub struct Task {
     pub settings: Settings,
     /// `solver.starts` and `solver.seed`.
     pub multistart: MultiStart,
+    /// How N is refined when `discretization.refine` (`None`: N is fixed).
+    pub refinement: Option<Refinement>,
     /// The filmstrip's camera (`output.filmstrip_view`).
     pub filmstrip_view: View,
     /// What is legal but looks like a slip (radians in a degrees field), each naming the file and field.
@@ -76,16 +78,36 @@ impl Task {
             ..Settings::default()
         };
         let multistart = MultiStart { starts: file.solver.starts, seed: file.solver.seed };
+        let refinement = file.discretization.refine.then(Refinement::default);
         Ok(Task {
             path: path.to_path_buf(),
             solver: file.solver.method,
             multistart,
+            refinement,
             file,
             spec,
             settings,
             filmstrip_view,
             warnings,
         })
+    }
+
+    /// Plans the task as its file says — the solver, the starts and, with `discretization.refine`, the
+    /// refinement of N ([`crate::plan::plan_refined`]). Afterwards `spec` and `file` hold the N planned (and
+    /// no longer ask to refine), so [`Task::resolved_file`] is the task as planned.
+    pub fn plan(&mut self, observer: &mut dyn FnMut(&crate::solve::Progress)) -> Result<crate::plan::Plan> {
+        let planned = match &self.refinement {
+            Some(r) => {
+                let (spec, planned) =
+                    crate::plan::plan_refined(&self.spec, self.solver, &self.settings, &self.multistart, r, observer)?;
+                self.spec = spec;
+                planned
+            }
+            None => crate::plan::plan_with_starts(&self.spec, self.solver, &self.settings, &self.multistart, observer)?,
+        };
+        self.file.discretization.control_points = self.spec.n_ctrl;
+        self.file.discretization.refine = false;
+        Ok(planned)
     }
 
     /// The task as resolved: every path absolute (so the file works from any directory), the start and goal

@@ -295,8 +295,12 @@ impl Default for ObjectiveSection {
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DiscretizationSection {
-    #[serde(default = "sixteen")]
+    /// N per joint (the first level when `refine`).
+    #[serde(default = "first_control_points")]
     pub control_points: usize,
+    /// Refine N from `control_points` until the effort changes by < 0.5 % (`plan::plan_refined`).
+    #[serde(default)]
+    pub refine: bool,
     #[serde(default = "four")]
     pub nodes_per_span: usize,
     /// "linear" (default), "via" (through `motion.via`), or a CSV file of `time, joint…` in degrees.
@@ -304,8 +308,10 @@ pub struct DiscretizationSection {
     pub initial_guess: String,
 }
 
-fn sixteen() -> usize {
-    16
+/// N when the task does not say.
+pub const FIRST_CONTROL_POINTS: usize = 16;
+fn first_control_points() -> usize {
+    FIRST_CONTROL_POINTS
 }
 fn four() -> usize {
     4
@@ -316,7 +322,7 @@ fn linear() -> String {
 
 impl Default for DiscretizationSection {
     fn default() -> Self {
-        DiscretizationSection { control_points: 16, nodes_per_span: 4, initial_guess: linear() }
+        DiscretizationSection { control_points: FIRST_CONTROL_POINTS, refine: false, nodes_per_span: 4, initial_guess: linear() }
     }
 }
 

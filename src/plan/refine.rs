@@ -1,0 +1,101 @@
+//! A converged discretisation. The effort of a plan depends on N, the number of control points (the
+//! double pendulum: 1758 at N = 16, 1554 at N = 64, another basin); a plan is only as good as its N.
+//! [`plan_refined`] solves at N, then halves every knot span — `N' = 2(N − 3) + 3`, whose spline space
+//! contains the coarser one, so the coarse optimum is refitted exactly as the finer solve's warm start —
+//! until the effort changes by less than `tolerance` (relative) between two levels, or N would pass
+//! `max_control_points`. The plan kept is the finest converged one; every level is reported.
+
+use super::{plan, plan_with_starts, InitialGuess, MultiStart, Plan, SolverKind, Spec};
+use crate::error::Result;
+use crate::solve::{Progress, Settings};
+use std::time::Instant;
+
+/// When to stop refining.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Refinement {
+    /// Stop when the effort changes by less than this between two levels (relative; default 0.005).
+    pub tolerance: f64,
+    /// Never go beyond this N (default 67: four halvings of N = 7's spans, three of N = 16's would be 107).
+    pub max_control_points: usize,
+}
+
+impl Default for Refinement {
+    fn default() -> Self {
+        Refinement { tolerance: 0.005, max_control_points: 67 }
+    }
+}
+
+/// One level of a refinement.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct Level {
+    pub control_points: usize,
+    /// `½∫τᵀWτ dt` at this N.
+    pub objective: f64,
+    pub converged: bool,
+    pub iterations: usize,
+    pub solve_seconds: f64,
+}
+
+/// Plans `spec` at its N (with `multi` starts), then refines as the module docs say. Returns the spec at the
+/// N of the plan kept (its other fields unchanged) and the plan, whose [`Plan::refinement`] lists the levels.
+pub fn plan_refined(
+    spec: &Spec,
+    solver: SolverKind,
+    settings: &Settings,
+    multi: &MultiStart,
+    refinement: &Refinement,
+    observer: &mut dyn FnMut(&Progress),
+) -> Result<(Spec, Plan)> {
+    let started = Instant::now();
+    let mut best = plan_with_starts(spec, solver, settings, multi, observer)?;
+    let mut best_spec = spec.clone();
+    let mut levels = vec![level(spec.n_ctrl, &best)];
+    let mut previous = best.outcome.objective;
+    let mut n = spec.n_ctrl;
+    while best.converged() && 2 * (n - 3) + 3 <= refinement.max_control_points {
+        n = 2 * (n - 3) + 3;
+        let finer = finer_spec(&best_spec, &best, n)?;
+        let left = settings.time_limit.map(|t| (t - started.elapsed().as_secs_f64()).max(0.0));
+        let planned = plan(&finer, solver, &Settings { time_limit: left, ..settings.clone() }, observer)?;
+        levels.push(level(n, &planned));
+        if !planned.converged() {
+            break;
+        }
+        let change = (planned.outcome.objective - previous).abs() / planned.outcome.objective.abs().max(f64::MIN_POSITIVE);
+        previous = planned.outcome.objective;
+        best = planned;
+        best_spec = Spec { initial_guess: spec.initial_guess.clone(), ..finer };
+        if change < refinement.tolerance {
+            break;
+        }
+    }
+    best.solve_seconds = started.elapsed().as_secs_f64();
+    best.refinement = levels;
+    Ok((best_spec, best))
+}
+
+fn level(n: usize, plan: &Plan) -> Level {
+    Level {
+        control_points: n,
+        objective: plan.outcome.objective,
+        converged: plan.converged(),
+        iterations: plan.outcome.iterations,
+        solve_seconds: plan.solve_seconds,
+    }
+}
+
+/// `spec` at `n` control points, warm-started from `plan`'s motion (sampled densely and refitted: exact, as
+/// the finer spline space holds the coarser).
+fn finer_spec(spec: &Spec, plan: &Plan, n: usize) -> Result<Spec> {
+    let samples = 8 * n;
+    let times: Vec<f64> = (0..=samples).map(|k| spec.duration * k as f64 / samples as f64).collect();
+    let motion = super::sample(spec, plan, &times)?;
+    let guess = motion.into_iter().map(|s| (s.t, s.q)).collect();
+    Ok(Spec { n_ctrl: n, initial_guess: InitialGuess::Samples(guess), ..spec.clone() })
+}
+
+/// The relative change of the effort at the last refinement, if there was one.
+pub fn last_change(levels: &[Level]) -> Option<f64> {
+    let [.., a, b] = levels else { return None };
+    (a.converged && b.converged).then(|| (b.objective - a.objective).abs() / b.objective.abs().max(f64::MIN_POSITIVE))
+}
