@@ -15,6 +15,7 @@
 
 // Recursions index several per-body arrays by the same body index; iterator chains would hide the math.
 #![allow(clippy::needless_range_loop)]
+#![warn(missing_docs)]
 
 pub mod dynamics;
 pub mod error;

@@ -129,7 +129,11 @@ pub struct Spec {
 }
 
 impl Spec {
-    /// A plain problem: no limits, no contacts, linear guess, N = 16 with 4 nodes per span.
+    /// A problem with the task file's defaults (`docs/task-file.md`): the model's position and effort
+    /// limits enforced, `q̇ = 0` at both ends, the torque objective with unit weights, N = 16 control points
+    /// with 4 Gauss–Legendre nodes per span, a linear initial guess, no contacts, balance or loads, and the
+    /// model's gravity (earth, `[0, 0, −9.81]` m/s², unless the model says otherwise). Set
+    /// `position_limits`/`torque_limits` to `false` for an unconstrained problem.
     pub fn new(model: Model, start: Vec<f64>, goal: Vec<f64>, duration: f64) -> Spec {
         let nv = model.nv();
         Spec {
@@ -144,8 +148,8 @@ impl Spec {
             nodes_per_span: 4,
             objective: Objective::Torque,
             weights: vec![1.0; nv],
-            position_limits: false,
-            torque_limits: false,
+            position_limits: true,
+            torque_limits: true,
             contacts: vec![],
             balance: None,
             loads: vec![],
