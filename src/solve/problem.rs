@@ -110,7 +110,14 @@ pub struct Evaluation {
 pub enum ProblemError {
     /// A pattern has the wrong number of rows.
     #[error("jacobian pattern of {which}: {rows} rows, but dims say {expected}")]
-    PatternRows { which: &'static str, rows: usize, expected: usize },
+    PatternRows {
+        /// Which pattern: "r", "h" or "g".
+        which: &'static str,
+        /// Rows it has.
+        rows: usize,
+        /// Rows [`Dims`] says it should have.
+        expected: usize,
+    },
     /// A pattern is malformed.
     #[error("jacobian pattern of {which}: {source}")]
     Pattern {
@@ -122,7 +129,12 @@ pub enum ProblemError {
     },
     /// The scales have the wrong length or are not positive and finite.
     #[error("scales of the {kind} constraints: {message}")]
-    Scales { kind: ConstraintKind, message: String },
+    Scales {
+        /// Equality or inequality scales.
+        kind: ConstraintKind,
+        /// What is wrong with them.
+        message: String,
+    },
 }
 
 impl Evaluation {

@@ -18,13 +18,34 @@ use super::linalg::SymmetricMatrix;
 pub enum PatternError {
     /// A column index is not below the number of columns.
     #[error("row {row}: column {col} is out of range (there are {ncols} columns)")]
-    ColumnOutOfRange { row: usize, col: usize, ncols: usize },
+    ColumnOutOfRange {
+        /// The row.
+        row: usize,
+        /// The column listed.
+        col: usize,
+        /// Columns of the matrix.
+        ncols: usize,
+    },
     /// A row lists a column twice.
     #[error("row {row}: column {col} is listed twice")]
-    DuplicateColumn { row: usize, col: usize },
+    DuplicateColumn {
+        /// The row.
+        row: usize,
+        /// The column listed twice.
+        col: usize,
+    },
     /// A row reaches outside the band the matrix is meant to have.
     #[error("row {row} spans columns {first}..={last}, wider than the target band of half-width {bandwidth}")]
-    OutsideBand { row: usize, first: usize, last: usize, bandwidth: usize },
+    OutsideBand {
+        /// The row.
+        row: usize,
+        /// Its first column.
+        first: usize,
+        /// Its last column.
+        last: usize,
+        /// The half-bandwidth of the band.
+        bandwidth: usize,
+    },
 }
 
 /// A sparse `nrows × ncols` matrix with a fixed pattern.
