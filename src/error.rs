@@ -3,45 +3,77 @@
 
 use std::path::PathBuf;
 
+/// Everything the library can fail with; each variant names where.
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
     /// A file could not be read or written.
     #[error("{path}: {error}")]
-    Io { path: PathBuf, error: std::io::Error },
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// What the operating system said.
+        error: std::io::Error,
+    },
 
     /// A model (URDF, figure file, built-in figure) is malformed or physically impossible.
     /// `origin` is the file (or the built-in's name), `element` the element or field at fault,
     /// e.g. `link "forearm" <inertial>/<mass>` or `joints.elbow.axis`.
     #[error("{origin}: {element}: {message}")]
-    Model { origin: String, element: String, message: String },
+    Model {
+        /// The file, or the built-in's name.
+        origin: String,
+        /// The element or field at fault.
+        element: String,
+        /// What is wrong.
+        message: String,
+    },
 
     /// Input that does not fit the model: a state vector of the wrong length, an unknown joint name, NaN.
     #[error("{origin}: {field}: {message}")]
-    Input { origin: String, field: String, message: String },
+    Input {
+        /// Where the input came from (a file, `"spec"`).
+        origin: String,
+        /// The field at fault (`motion.goal`, `q[3]`).
+        field: String,
+        /// What is wrong.
+        message: String,
+    },
 
     /// A task that cannot be planned as asked (contradictory or impossible constraints).
     #[error("{origin}: {field}: {message}")]
-    Task { origin: String, field: String, message: String },
+    Task {
+        /// The task file (or `"spec"`).
+        origin: String,
+        /// The field at fault (`motion.goal`, `q[3]`).
+        field: String,
+        /// What is wrong.
+        message: String,
+    },
 }
 
 impl Error {
+    /// An [`Error::Model`].
     pub fn model(origin: impl Into<String>, element: impl Into<String>, message: impl Into<String>) -> Self {
         Error::Model { origin: origin.into(), element: element.into(), message: message.into() }
     }
 
+    /// An [`Error::Input`].
     pub fn input(origin: impl Into<String>, field: impl Into<String>, message: impl Into<String>) -> Self {
         Error::Input { origin: origin.into(), field: field.into(), message: message.into() }
     }
 
+    /// An [`Error::Task`].
     pub fn task(origin: impl Into<String>, field: impl Into<String>, message: impl Into<String>) -> Self {
         Error::Task { origin: origin.into(), field: field.into(), message: message.into() }
     }
 
+    /// An [`Error::Io`] on `path`.
     pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
         Error::Io { path: path.into(), error: source }
     }
 }
 
+/// The library's result type.
 pub type Result<T> = std::result::Result<T, Error>;
 
 /// The known name closest to `name` by edit distance, when it is close enough to be a likely misspelling

@@ -13,9 +13,13 @@
 
 use nalgebra::{Matrix3, Matrix6, Vector3, Vector6};
 
+/// A 3-vector (m, rad, N … as the context says).
 pub type Vec3 = Vector3<f64>;
+/// A 3×3 matrix (rotations, rotational inertias).
 pub type Mat3 = Matrix3<f64>;
+/// A 6×6 spatial matrix.
 pub type Mat6 = Matrix6<f64>;
+/// A spatial 6-vector in the `[angular; linear]` order.
 pub type Vec6 = Vector6<f64>;
 
 /// The skew-symmetric matrix of eq. 20: `skew(d) x = d × x`.
@@ -27,20 +31,26 @@ pub fn skew(d: &Vec3) -> Mat3 {
 /// A spatial motion vector (twist) `[ω; v]`.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Motion {
+    /// Angular velocity `ω` (rad/s).
     pub w: Vec3,
+    /// Linear velocity `v` of the point at the frame's origin (m/s).
     pub v: Vec3,
 }
 
 /// A spatial force vector (wrench) `[n; f]`.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Force {
+    /// Moment `n` about the frame's origin (N·m).
     pub n: Vec3,
+    /// Force `f` (N).
     pub f: Vec3,
 }
 
 impl Motion {
+    /// The zero twist.
     pub const ZERO: Motion = Motion { w: Vec3::new(0.0, 0.0, 0.0), v: Vec3::new(0.0, 0.0, 0.0) };
 
+    /// The twist `[w; v]`.
     #[inline]
     pub fn new(w: Vec3, v: Vec3) -> Self {
         Motion { w, v }
@@ -64,6 +74,7 @@ impl Motion {
         self.w.dot(&f.n) + self.v.dot(&f.f)
     }
 
+    /// `s·self`.
     #[inline]
     pub fn scale(&self, s: f64) -> Motion {
         Motion { w: self.w * s, v: self.v * s }
@@ -75,11 +86,13 @@ impl Motion {
         Motion { w: self.w + m.w * s, v: self.v + m.v * s }
     }
 
+    /// As a 6-vector `[ω; v]`.
     #[inline]
     pub fn to_vec6(&self) -> Vec6 {
         Vec6::new(self.w.x, self.w.y, self.w.z, self.v.x, self.v.y, self.v.z)
     }
 
+    /// From a 6-vector `[ω; v]`.
     #[inline]
     pub fn from_vec6(x: &Vec6) -> Self {
         Motion { w: Vec3::new(x[0], x[1], x[2]), v: Vec3::new(x[3], x[4], x[5]) }
@@ -87,18 +100,22 @@ impl Motion {
 }
 
 impl Force {
+    /// The zero wrench.
     pub const ZERO: Force = Force { n: Vec3::new(0.0, 0.0, 0.0), f: Vec3::new(0.0, 0.0, 0.0) };
 
+    /// The wrench `[n; f]`.
     #[inline]
     pub fn new(n: Vec3, f: Vec3) -> Self {
         Force { n, f }
     }
 
+    /// As a 6-vector `[n; f]`.
     #[inline]
     pub fn to_vec6(&self) -> Vec6 {
         Vec6::new(self.n.x, self.n.y, self.n.z, self.f.x, self.f.y, self.f.z)
     }
 
+    /// From a 6-vector `[n; f]`.
     #[inline]
     pub fn from_vec6(x: &Vec6) -> Self {
         Force { n: Vec3::new(x[0], x[1], x[2]), f: Vec3::new(x[3], x[4], x[5]) }
@@ -171,7 +188,9 @@ vector_ops!(Force, n, f);
 /// (eq. 15's `(R, d)` as an element of SE(3)).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Transform {
+    /// The child frame's axes in the parent frame, `R`.
     pub rotation: Mat3,
+    /// The child frame's origin in the parent frame, `p` (m).
     pub translation: Vec3,
 }
 
@@ -182,13 +201,16 @@ impl Default for Transform {
 }
 
 impl Transform {
+    /// The identity placement.
     pub const IDENTITY: Transform =
         Transform { rotation: Mat3::new(1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0), translation: Vec3::new(0.0, 0.0, 0.0) };
 
+    /// The placement `(rotation, translation)`.
     pub fn new(rotation: Mat3, translation: Vec3) -> Self {
         Transform { rotation, translation }
     }
 
+    /// A pure translation (m).
     pub fn from_translation(translation: Vec3) -> Self {
         Transform { rotation: Mat3::identity(), translation }
     }
@@ -204,6 +226,7 @@ impl Transform {
         Transform { rotation: self.rotation * other.rotation, translation: self.rotation * other.translation + self.translation }
     }
 
+    /// The inverse placement: parent in child coordinates.
     #[inline]
     pub fn inverse(&self) -> Transform {
         let rt = self.rotation.transpose();
@@ -312,15 +335,20 @@ pub fn rotation_from_z(a: &Vec3) -> Mat3 {
 /// about the centre of mass (the paper's `M̂'ᵢ`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Inertia {
+    /// Mass (kg).
     pub mass: f64,
+    /// Centre of mass in the link frame (m).
     pub com: Vec3,
+    /// Rotational inertia about the centre of mass, link axes (kg·m²).
     pub inertia_com: Mat3,
 }
 
 impl Inertia {
+    /// No mass at all.
     pub const ZERO: Inertia =
         Inertia { mass: 0.0, com: Vec3::new(0.0, 0.0, 0.0), inertia_com: Mat3::new(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0) };
 
+    /// The inertia of `mass` (kg) at `com` (m) with `inertia_com` (kg·m²) about it.
     pub fn new(mass: f64, com: Vec3, inertia_com: Mat3) -> Self {
         Inertia { mass, com, inertia_com }
     }
@@ -376,8 +404,11 @@ pub fn rotate_symmetric(r: &Mat3, s: &Mat3) -> Mat3 {
 /// are the composite inertias of the CRBA and the derivative recursions.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SpatialInertia {
+    /// Mass `m` (kg).
     pub m: f64,
+    /// First moment of mass `h = m c` (kg·m).
     pub h: Vec3,
+    /// Rotational inertia about the frame's origin `I_o` (kg·m²).
     pub i_o: Mat3,
 }
 
@@ -388,6 +419,7 @@ impl Default for SpatialInertia {
 }
 
 impl SpatialInertia {
+    /// No mass at all.
     pub const ZERO: SpatialInertia =
         SpatialInertia { m: 0.0, h: Vec3::new(0.0, 0.0, 0.0), i_o: Mat3::new(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0) };
 

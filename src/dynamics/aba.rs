@@ -8,6 +8,8 @@ use crate::model::Model;
 use crate::spatial::{Motion, Vec3};
 use nalgebra::DVector;
 
+/// Forward dynamics by the articulated body algorithm: `q̈ = H(q)⁻¹(τ − C(q, q̇))` under
+/// `gravity` (m/s²) and the external forces `fext`, in `O(n)`; the result is also left in `data.ddq`.
 #[allow(non_snake_case)]
 pub fn aba<'d>(
     model: &Model,

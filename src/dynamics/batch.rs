@@ -64,29 +64,42 @@ pub struct StatesFile {
     pub origin: String,
     /// For each of the file's joints, the model's dof index.
     pub to_model: Vec<usize>,
+    /// The file's joint names, in the file's order.
     pub joint_names: Vec<String>,
+    /// The file's gravity (m/s²), if it gives one.
     pub gravity: Option<Vec3>,
+    /// The states, in the file's order.
     pub states: Vec<State>,
 }
 
 /// One state in the model's joint order.
 pub struct State {
+    /// Joint positions (rad or m).
     pub q: Vec<f64>,
+    /// Joint velocities (rad/s or m/s).
     pub v: Vec<f64>,
+    /// Joint accelerations (rad/s² or m/s²).
     pub a: Vec<f64>,
+    /// A torque vector (N·m or N) to run forward dynamics with, if the file gives one.
     pub tau_rand: Option<Vec<f64>>,
 }
 
 /// The engine's answers for one state, in the file's joint order.
 #[derive(Serialize)]
 pub struct StateResult {
+    /// Inverse dynamics `τ = RNEA(q, q̇, q̈)` (N·m or N).
     pub tau: Vec<f64>,
+    /// `∂τ/∂q`, row-major (`[i][j] = ∂τᵢ/∂qⱼ`).
     pub dtau_dq: Vec<Vec<f64>>,
+    /// `∂τ/∂q̇`, row-major.
     pub dtau_dv: Vec<Vec<f64>>,
+    /// The joint-space inertia matrix `H(q)` (kg·m² or kg).
     #[serde(rename = "M")]
     pub m: Vec<Vec<f64>>,
+    /// Forward dynamics `q̈ = ABA(q, q̇, tau_rand)`, when the state has `tau_rand`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub ddq: Option<Vec<f64>>,
+    /// The root reaction wrench `[n; f]` (N·m, N; world axes, moment about the world origin).
     pub root_wrench: [f64; 6],
 }
 

@@ -8,15 +8,22 @@ use serde::Serialize;
 use std::hint::black_box;
 use std::time::Instant;
 
+/// Timings of the dynamics kernels on one model (`mintorque dynamics --bench`).
 #[derive(Serialize, Debug, Clone)]
 pub struct BenchResult {
+    /// The model's name.
     pub model: String,
+    /// Degrees of freedom.
     pub nv: usize,
     /// Median ns per call over `states` random states, each timed over a batch of calls.
     pub inverse_dynamics_ns: f64,
+    /// Median ns per call of the RNEA derivatives `∂τ/∂q`, `∂τ/∂q̇`.
     pub derivatives_ns: f64,
+    /// Median ns per call of the CRBA mass matrix `H(q)`.
     pub mass_matrix_ns: f64,
+    /// Median ns per call of the ABA forward dynamics.
     pub forward_dynamics_ns: f64,
+    /// Random states timed.
     pub states: usize,
 }
 
@@ -62,6 +69,7 @@ fn median_ns(states: &[[Vec<f64>; 4]], batch: usize, mut call: impl FnMut(&[Vec<
     times[times.len() / 2]
 }
 
+/// Times the kernels on `states` random states of `model` under gravity `gravity` (m/s²).
 pub fn bench(model: &Model, gravity: &Vec3, states: usize) -> BenchResult {
     let samples = random_states(model, states.max(1), 42);
     let mut data = Data::new(model);

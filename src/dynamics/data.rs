@@ -5,6 +5,8 @@ use crate::model::Model;
 use crate::spatial::{Force, Inertia, Mat3, Mat6, Motion, SpatialInertia, Transform, Vec3, Vec6};
 use nalgebra::{DMatrix, DVector};
 
+/// Work space of the recursions for one model: every per-body quantity of the forward and backward passes
+/// and the outputs. Allocated once ([`Data::new`]), reused by every call.
 #[allow(non_snake_case)]
 #[derive(Clone, Debug)]
 pub struct Data {
@@ -41,25 +43,36 @@ pub struct Data {
     pub A: Vec<Motion>,
 
     // ---- articulated body algorithm (aba.rs) ----
+    /// Articulated-body inertia `I^A_i` (world).
     pub IA: Vec<Mat6>,
+    /// Articulated-body bias force `p^A_i` (world).
     pub pA: Vec<Vec6>,
+    /// `Uᵢ = I^A_i Sᵢ`.
     pub U: Vec<Vec6>,
+    /// `1 / Dᵢ` with `Dᵢ = Sᵢᵀ Uᵢ`.
     pub D_inv: Vec<f64>,
+    /// `uᵢ = τᵢ − Sᵢᵀ p^A_i`.
     pub u: Vec<f64>,
     /// Velocity-product acceleration `cᵢ = Ṡᵢ q̇ᵢ`.
     pub c: Vec<Motion>,
 
     // ---- outputs ----
+    /// Joint torques of the last inverse dynamics (N·m or N).
     pub tau: DVector<f64>,
+    /// `∂τ/∂q` of the last derivative call.
     pub dtau_dq: DMatrix<f64>,
+    /// `∂τ/∂q̇` of the last derivative call.
     pub dtau_dv: DMatrix<f64>,
     /// The joint-space inertia matrix `H(q)` (`M` in the reference data), symmetric.
     pub M: DMatrix<f64>,
+    /// Joint accelerations of the last forward dynamics (rad/s² or m/s²).
     pub ddq: DVector<f64>,
     /// Derivatives of the root reaction wrench (and of the joint force of every strict ancestor) with
     /// respect to `q_k`, `q̇_k`, `q̈_k`, indexed by dof `k` (filled by `rnea_derivatives`).
     pub dW_dq: Vec<Force>,
+    /// Like `dW_dq`, with respect to `q̇_k`.
     pub dW_dv: Vec<Force>,
+    /// Like `dW_dq`, with respect to `q̈_k`.
     pub dW_da: Vec<Force>,
     /// The wrench the world exerts on the root to carry the figure (world coordinates, moment about the
     /// world origin): the "root reaction" used by balance and contact constraints.
@@ -67,6 +80,7 @@ pub struct Data {
 }
 
 impl Data {
+    /// Work space sized for `model`, with its constant parts cached.
     pub fn new(model: &Model) -> Self {
         let nb = model.bodies.len();
         let nv = model.nv();

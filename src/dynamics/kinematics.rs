@@ -29,21 +29,29 @@ pub fn local_axis(kind: JointKind, axis: &Vec3) -> Motion {
 /// general rotation: most joints turn about a coordinate axis of their frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum JointMotion {
+    /// The root pseudo-joint: no motion.
     Root,
     /// Rotation about coordinate axis `k` (0, 1, 2) of the joint frame, with `sign` ±1.
     RevoluteAxis {
+        /// The coordinate axis (0, 1, 2).
         k: usize,
+        /// +1 or −1.
         sign: f64,
     },
+    /// Rotation about a general unit axis of the joint frame.
     Revolute {
+        /// Unit axis in the joint frame.
         axis: Vec3,
     },
+    /// Translation along a unit axis of the joint frame.
     Prismatic {
+        /// Unit axis in the joint frame.
         axis: Vec3,
     },
 }
 
 impl JointMotion {
+    /// The motion of a joint of `kind` about or along the unit `axis`.
     pub fn of(kind: JointKind, axis: &Vec3) -> JointMotion {
         match kind {
             JointKind::Root => JointMotion::Root,

@@ -104,6 +104,7 @@ pub const TABLE_TOTAL_MASS_KG: f64 = 2.0
 /// One row of Table I in SI units, with how many of the segment a body has.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TableRow {
+    /// The segment's name in Table I.
     pub segment: &'static str,
     /// kg, one segment.
     pub mass_kg: f64,
@@ -301,6 +302,7 @@ pub enum Structure {
 }
 
 impl Structure {
+    /// Every built-in structure, in the order `mintorque examples` lists them.
     pub const ALL: [Structure; 4] = [Structure::Sagittal, Structure::FreeArms, Structure::Hanging, Structure::PushUp];
 
     /// The structure's name as used in task files and on the command line.

@@ -59,9 +59,13 @@ pub enum JointKind {
 /// an absent limit is infinite.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct JointLimits {
+    /// Lower position limit (rad or m).
     pub lower: f64,
+    /// Upper position limit (rad or m).
     pub upper: f64,
+    /// Joint velocity limit (rad/s or m/s).
     pub velocity: f64,
+    /// Effort limit `|τ| ≤ effort` (N·m or N).
     pub effort: f64,
 }
 
@@ -84,6 +88,7 @@ pub struct Passive {
 }
 
 impl Passive {
+    /// Whether neither spring nor damper acts.
     pub fn is_zero(&self) -> bool {
         self.stiffness == 0.0 && self.damping == 0.0
     }
@@ -95,9 +100,12 @@ impl Passive {
     }
 }
 
+/// A joint: how body `i` moves relative to its parent (one degree of freedom, or the root).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Joint {
+    /// The joint's name, as in the model file.
     pub name: String,
+    /// Revolute, prismatic, or the root pseudo-joint.
     pub kind: JointKind,
     /// Index of the body this joint hangs from (`parent(i) < i`).
     pub parent: usize,
@@ -106,7 +114,9 @@ pub struct Joint {
     pub placement: Transform,
     /// Unit axis in the joint frame.
     pub axis: Vec3,
+    /// Position, velocity and effort limits.
     pub limits: JointLimits,
+    /// The joint's spring and damper (paper section 7.2).
     pub passive: Passive,
     /// The anatomical joint this revolute belongs to (`"shoulder"` for `shoulder_z`), if any.
     pub group: Option<String>,
@@ -117,23 +127,34 @@ pub struct Joint {
 pub enum Shape {
     /// A box centred at `origin`, with full edge lengths `size`.
     Box {
+        /// Placement of the box's centre and axes.
         origin: Transform,
+        /// Full edge lengths (m).
         size: Vec3,
     },
     /// A cylinder along the local z axis of `origin`, centred there.
     Cylinder {
+        /// Placement of the cylinder's centre; its axis is local z.
         origin: Transform,
+        /// Radius (m).
         radius: f64,
+        /// Length (m).
         length: f64,
     },
     /// A capsule from point `a` to point `b`.
     Capsule {
+        /// One end (m, body frame).
         a: Vec3,
+        /// The other end (m, body frame).
         b: Vec3,
+        /// Radius (m).
         radius: f64,
     },
+    /// A sphere.
     Sphere {
+        /// Centre (m, body frame).
         center: Vec3,
+        /// Radius (m).
         radius: f64,
     },
 }
@@ -152,30 +173,39 @@ impl Shape {
     }
 }
 
+/// A rigid body moved by `joints[i]`, with the links merged into it by fixed joints.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Body {
     /// The link's name (for merged links, the name of the link that carries the joint).
     pub name: String,
     /// Mass properties in the body frame, including every link merged into it by fixed joints.
     pub inertia: Inertia,
+    /// Shapes to draw it with.
     pub shapes: Vec<Shape>,
 }
 
 /// A named frame on a body: a link merged by a fixed joint, a hand, a foot, a barbell grip.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Frame {
+    /// The frame's name (a link name, `hand_l`, `grip` …).
     pub name: String,
+    /// Index of the body it is fixed to.
     pub body: usize,
     /// The frame in the body's frame.
     pub placement: Transform,
 }
 
+/// An articulated figure: a tree of bodies connected by one-degree-of-freedom joints, in topological order
+/// (every parent before its children).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Model {
+    /// The model's name (the URDF's robot name, the figure's or the built-in's).
     pub name: String,
     /// `joints[0]` is the root pseudo-joint; `joints[i]` moves `bodies[i]`.
     pub joints: Vec<Joint>,
+    /// `bodies[i]` is moved by `joints[i]`; `bodies[0]` is the fixed root.
     pub bodies: Vec<Body>,
+    /// Named frames, for contacts, loads and payloads.
     pub frames: Vec<Frame>,
     /// Default gravity in the world frame (m/s²); tasks may override it.
     pub gravity: Vec3,
@@ -257,6 +287,7 @@ impl Model {
         self.joints.len() - 1
     }
 
+    /// The body `joints[i]` hangs from.
     #[inline]
     pub fn parent(&self, i: usize) -> usize {
         self.joints[i].parent
@@ -272,10 +303,12 @@ impl Model {
         self.joints[1..].iter().position(|j| j.name == name)
     }
 
+    /// The index in `frames` of the frame called `name`.
     pub fn frame_index(&self, name: &str) -> Option<usize> {
         self.frames.iter().position(|f| f.name == name)
     }
 
+    /// The index in `bodies` of the body called `name`.
     pub fn body_index(&self, name: &str) -> Option<usize> {
         self.bodies.iter().position(|b| b.name == name)
     }

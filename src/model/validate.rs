@@ -13,8 +13,11 @@ use std::collections::HashSet;
 /// turns the dynamics into NaN. `docs/figure-file.md` and `docs/task-file.md` list them per field.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Range {
+    /// Least value allowed, in `unit`.
     pub min: f64,
+    /// Greatest value allowed, in `unit`.
     pub max: f64,
+    /// The SI unit, for messages (`"kg"`, `"m"`).
     pub unit: &'static str,
 }
 
@@ -58,6 +61,7 @@ fn short(v: f64) -> String {
 /// floating point).
 pub const MIN_MOVED_MASS_FRACTION: f64 = 1e-9;
 
+/// The [`Range`] of every kind of number in model and task files.
 pub mod ranges {
     use super::Range;
     /// A body's or payload's mass.
@@ -100,8 +104,11 @@ pub enum Culprit {
 /// A validation failure: what it is about, the element to name (`joint "elbow"`) and what is wrong.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Problem {
+    /// What the problem is about.
     pub culprit: Culprit,
+    /// The element to name in the message, e.g. `joint "elbow"`.
     pub element: String,
+    /// What is wrong.
     pub message: String,
 }
 

@@ -2,7 +2,9 @@
 
 /// A bundled task file.
 pub struct Example {
+    /// The file's name without `.toml`, as `mintorque examples` lists it.
     pub name: &'static str,
+    /// The file's text.
     pub text: &'static str,
 }
 
@@ -14,6 +16,7 @@ impl Example {
     }
 }
 
+/// Every bundled example, by name.
 pub const ALL: &[Example] = &[
     Example { name: "arm_lift_earth", text: include_str!("../../examples/arm_lift_earth.toml") },
     Example { name: "arm_lift_mars", text: include_str!("../../examples/arm_lift_mars.toml") },

@@ -37,6 +37,7 @@ pub enum SolverKind {
 }
 
 impl SolverKind {
+    /// The solver's name and what it is, for reports.
     pub fn name(&self) -> &'static str {
         match self {
             SolverKind::Structured => "structured (augmented Lagrangian + Levenberg–Marquardt, banded)",
@@ -55,23 +56,28 @@ pub struct Plan {
     pub lambda_ctrl: Vec<f64>,
     /// The solver's unknowns at the end (for warm starts).
     pub x: Vec<f64>,
+    /// How the solve ended.
     pub outcome: Outcome,
+    /// The solver that produced it.
     pub solver: SolverKind,
     /// Whether the structured solver's result was finished by a BFGS polish (see [`plan`]).
     pub polished: bool,
     /// `½∫τᵀWτ dt` of the initial guess (same quadrature).
     pub initial_objective: f64,
+    /// Wall-clock time of the solve (s).
     pub solve_seconds: f64,
     /// The worst scaled constraint violation on a dense grid between the nodes, and where.
     pub worst_between_nodes: Option<(f64, String)>,
     /// Every start's outcome (one entry for a single start), and which one this plan is.
     pub starts: Vec<StartReport>,
+    /// Index in `starts` of this plan's start.
     pub best_start: usize,
     /// The levels of a refinement of N ([`plan_refined`]); empty for a plan at a fixed N.
     pub refinement: Vec<Level>,
 }
 
 impl Plan {
+    /// Whether the solver met its tolerances.
     pub fn converged(&self) -> bool {
         self.outcome.converged
     }

@@ -20,7 +20,9 @@ use rayon::prelude::*;
 /// How many starts, and the seed of their perturbations.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct MultiStart {
+    /// Starting points solved (1 = the guess alone).
     pub starts: usize,
+    /// Seed of the perturbed starts.
     pub seed: u64,
 }
 
@@ -43,15 +45,21 @@ impl MultiStart {
 /// One start's outcome, as reported in summary.json.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct StartReport {
+    /// 0 for the guess, then the perturbed starts.
     pub index: usize,
     /// `None` for the guess itself.
     pub seed: Option<u64>,
     /// `½∫τᵀWτ dt` (N²m²s).
     pub objective: f64,
+    /// Whether it converged.
     pub converged: bool,
+    /// Why the solver stopped.
     pub reason: String,
+    /// Solver iterations.
     pub iterations: usize,
+    /// Whether a BFGS polish finished it.
     pub polished: bool,
+    /// Wall-clock time of its solve (s).
     pub solve_seconds: f64,
 }
 

@@ -28,11 +28,15 @@ impl Default for Refinement {
 /// One level of a refinement.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Level {
+    /// N at this level.
     pub control_points: usize,
-    /// `½∫τᵀWτ dt` at this N.
+    /// `½∫τᵀWτ dt` at this N (N²m²s).
     pub objective: f64,
+    /// Whether the solve at this N converged.
     pub converged: bool,
+    /// Accepted iterations at this N.
     pub iterations: usize,
+    /// Seconds spent at this N.
     pub solve_seconds: f64,
 }
 

@@ -9,18 +9,23 @@ use crate::dynamics::{aba::aba, kinematics, Data};
 use crate::error::{Error, Result};
 use crate::spatial::Force;
 
+/// A plan's torques integrated forward from its start: how far the simulated motion drifts from the
+/// planned one.
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct Simulation {
     /// Integration step (s), classical Runge–Kutta 4.
     pub step: f64,
     /// Times (s) and the simulated and planned joint positions at them (rad or m).
     pub times: Vec<f64>,
+    /// Simulated positions, one row per time.
     pub q_simulated: Vec<Vec<f64>>,
+    /// Planned positions, one row per time.
     pub q_planned: Vec<Vec<f64>>,
     /// Per joint, the largest |simulated − planned| over the motion (rad or m).
     pub max_drift: Vec<f64>,
     /// The largest of them, and its joint.
     pub worst_drift: f64,
+    /// The joint of `worst_drift`.
     pub worst_joint: String,
 }
 

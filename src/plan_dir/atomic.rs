@@ -15,6 +15,7 @@ use std::path::{Path, PathBuf};
 /// operation (0 = before the first). Nothing is cleaned up, as after a real kill.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct WriteOptions {
+    /// Stop before this file operation (0 = the first); `None` writes normally.
     pub crash_after: Option<usize>,
 }
 

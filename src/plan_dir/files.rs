@@ -13,15 +13,19 @@ use std::collections::BTreeMap;
 /// Everything a plan directory holds, before it is rendered to files.
 #[derive(Clone, Debug)]
 pub struct PlanContents {
+    /// The figure, written as `model.figure.toml`.
     pub model: Model,
+    /// `plan.json`.
     pub record: PlanRecord,
     /// `summary.json`: the summary, with the ergonomic report as its `ergonomics`.
     pub summary: Option<Summary>,
+    /// `ergonomics.json`, and the `ergonomics` of `summary.json`.
     pub ergonomics: Option<Ergonomics>,
     /// `task.resolved.toml`.
     pub resolved_task: Option<String>,
     /// Plot the motion (with the initial guess dashed, when given).
     pub plots: bool,
+    /// The initial guess sampled, drawn dashed in the plots.
     pub guess: Option<Vec<SampleRecord>>,
     /// The camera of `filmstrip.svg` / `.png`.
     pub filmstrip_view: View,

@@ -22,7 +22,9 @@ pub fn checksum(bytes: &[u8]) -> String {
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Entry {
+    /// Size (bytes).
     pub bytes: u64,
+    /// FNV-1a 64-bit checksum, 16 hex digits.
     pub fnv1a64: String,
 }
 
@@ -50,6 +52,7 @@ impl Manifest {
         }
     }
 
+    /// `manifest.json`'s text: pretty JSON with a final newline.
     pub fn to_bytes(&self) -> Vec<u8> {
         let mut text = serde_json::to_string_pretty(self).expect("a manifest serialises");
         text.push('\n');

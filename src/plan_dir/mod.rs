@@ -33,6 +33,7 @@ pub const FORMAT: &str = "mintorque-plan-dir-1";
 pub const MANIFEST: &str = "manifest.json";
 
 /// What can go wrong with a plan directory.
+/// What reading or writing a plan directory can fail with.
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
     /// Bad input in one of its files, or a file that cannot be read or written.
@@ -40,18 +41,38 @@ pub enum Error {
     Input(#[from] crate::Error),
     /// The directory (or a file in it) is not what it should be: not a plan, files of different plans.
     #[error("{path}: {message}")]
-    Dir { path: PathBuf, message: String },
+    Dir {
+        /// The directory or file.
+        path: PathBuf,
+        /// What is wrong with it.
+        message: String,
+    },
     /// Another writer holds the directory's lock.
     #[error("{dir}: another mintorque is writing this plan directory (it holds {lock}); wait for it to finish")]
-    Locked { dir: PathBuf, lock: PathBuf },
+    Locked {
+        /// The plan directory.
+        dir: PathBuf,
+        /// The lock file the other writer holds.
+        lock: PathBuf,
+    },
     /// A result that is not a finite number: nothing is written.
     #[error("non-finite result, nothing written: {stage}, {at}: {quantity} = {value}")]
-    NonFinite { stage: String, at: String, quantity: String, value: f64 },
+    NonFinite {
+        /// The stage that produced it (e.g. "the planned motion").
+        stage: String,
+        /// Where: the sample or node, joint or contact.
+        at: String,
+        /// The quantity (a torque, a position …).
+        quantity: String,
+        /// The value (NaN or ±inf).
+        value: f64,
+    },
     /// The writer stopped at an injected fault ([`WriteOptions::crash_after`]) after this many operations.
     #[error("write interrupted (injected fault) after {0} file operations")]
     Interrupted(usize),
 }
 
+/// The plan directory's result type.
 pub type Result<T> = std::result::Result<T, Error>;
 
 /// A plan directory as read back, every file checked against the manifest.
@@ -59,10 +80,13 @@ pub type Result<T> = std::result::Result<T, Error>;
 pub struct LoadedPlan {
     /// Where it was read from (the directory, or the old plan a killed writer left aside).
     pub dir: PathBuf,
+    /// Its `manifest.json`.
     pub manifest: Manifest,
     /// Every file, by name, as checked.
     pub files: BTreeMap<String, Vec<u8>>,
+    /// The figure, read from `model.figure.toml`.
     pub model: Model,
+    /// `plan.json`.
     pub record: PlanRecord,
 }
 

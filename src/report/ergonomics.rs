@@ -12,8 +12,11 @@ use serde::Serialize;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
+/// `ergonomics.json`: the plan against the figure's strength — peak torques, time above the strength
+/// limits, joint work and power.
 #[derive(Serialize, Debug, Clone, PartialEq)]
 pub struct Ergonomics {
+    /// One entry per joint, in `q` order.
     pub joints: Vec<JointErgonomics>,
     /// `Σⱼ ∫ max(τⱼ q̇ⱼ, 0) dt` (J): the work the joints put in, none of it taken back by negative work.
     pub total_positive_work_j: f64,
@@ -23,21 +26,27 @@ pub struct Ergonomics {
     pub peak_power: Option<PeakPower>,
 }
 
+/// The largest joint power of the motion.
 #[derive(Serialize, Debug, Clone, PartialEq)]
 pub struct PeakPower {
+    /// The joint.
     pub joint: String,
     /// |τ q̇| (W).
     pub value_w: f64,
+    /// When it occurs (s).
     pub time_s: f64,
 }
 
+/// The ergonomic figures of one joint.
 #[derive(Serialize, Debug, Clone, PartialEq)]
 pub struct JointErgonomics {
+    /// The joint's name.
     pub name: String,
     /// "N·m" for a revolute joint, "N" for a prismatic one.
     pub torque_unit: &'static str,
     /// Peak |active torque| and the sample time at which it occurs.
     pub peak_abs_torque: f64,
+    /// When the peak torque occurs (s).
     pub peak_time_s: f64,
     /// Every joint's position at the peak: degrees for revolutes, metres for prismatic joints.
     pub posture_at_peak: BTreeMap<String, f64>,
@@ -57,6 +66,7 @@ pub struct JointErgonomics {
     pub positive_work_j: f64,
     /// Peak |τ q̇| (W) and when.
     pub peak_power_w: f64,
+    /// When the peak power occurs (s).
     pub peak_power_time_s: f64,
 }
 

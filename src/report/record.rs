@@ -5,9 +5,12 @@
 use crate::plan::{NodeValues, Plan, Spec};
 use serde::{Deserialize, Serialize};
 
+/// A contact as `plan.json` records it.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct ContactRecord {
+    /// The contact's name.
     pub name: String,
+    /// The frame held.
     pub frame: String,
     /// World target point (m).
     pub target: [f64; 3],
@@ -15,11 +18,16 @@ pub struct ContactRecord {
     pub normal: Option<[f64; 3]>,
 }
 
+/// The motion at one sample time, as `plan.json` records it.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct SampleRecord {
+    /// Time (s).
     pub t: f64,
+    /// Joint positions (rad or m).
     pub q: Vec<f64>,
+    /// Joint velocities (rad/s or m/s).
     pub qd: Vec<f64>,
+    /// Joint accelerations (rad/s² or m/s²).
     pub qdd: Vec<f64>,
     /// Active joint torques (N·m or N).
     pub tau: Vec<f64>,
@@ -40,28 +48,40 @@ impl From<&NodeValues> for SampleRecord {
     }
 }
 
+/// `plan.json`: a solved plan, exactly (its control points) and sampled.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct PlanRecord {
+    /// The file format's name and version, [`FORMAT`].
     pub format: String,
+    /// The model's name.
     pub model_name: String,
+    /// The joints' names, in `q` order.
     pub joint_names: Vec<String>,
+    /// Duration of the motion `T` (s).
     pub duration: f64,
+    /// World gravity (m/s²).
     pub gravity: [f64; 3],
+    /// B-spline control points per joint, N.
     pub n_ctrl: usize,
     /// Joint control points, `n_ctrl × nv` row-major.
     pub ctrl: Vec<f64>,
     /// Contact-force control points, `n_ctrl × n_lambda` row-major.
     pub lambda_ctrl: Vec<f64>,
+    /// Every contact, in the order of the contact forces.
     pub contacts: Vec<ContactRecord>,
     /// Support rectangle of a balance constraint, `[[x_min, x_max], [y_min, y_max]]` (m).
     pub support: Option<[[f64; 2]; 2]>,
+    /// Whether the solver converged.
     pub converged: bool,
+    /// The motion sampled at the output's sample rate.
     pub samples: Vec<SampleRecord>,
 }
 
+/// The `format` this version writes and reads.
 pub const FORMAT: &str = "mintorque-plan-1";
 
 impl PlanRecord {
+    /// The record of `plan`, solved for `spec`, with the samples `samples`.
     pub fn new(spec: &Spec, plan: &Plan, samples: &[NodeValues]) -> PlanRecord {
         let model = &spec.model;
         let arr = |v: &crate::spatial::Vec3| [v.x, v.y, v.z];

@@ -98,13 +98,17 @@ pub fn sticks(model: &Model) -> Vec<Vec<[Vec3; 2]>> {
 /// at the origin of the body its last revolute moves.
 #[derive(Clone, Debug, PartialEq)]
 pub struct JointMarker {
+    /// The anatomical joint's name (`shoulder_l`).
     pub name: String,
+    /// The body at whose origin it is drawn.
     pub body: usize,
     /// The degrees of freedom it stands for, and their effort limits (`None` when unlimited).
     pub dofs: Vec<usize>,
+    /// Effort limit of each of `dofs` (N·m or N).
     pub efforts: Vec<Option<f64>>,
 }
 
+/// One marker per anatomical joint of `model`, in `q` order of their first degree of freedom.
 pub fn joint_markers(model: &Model) -> Vec<JointMarker> {
     let mut out: Vec<JointMarker> = Vec::new();
     for (i, j) in model.joints.iter().enumerate().skip(1) {

@@ -3,8 +3,10 @@
 use crate::plan::{NodeValues, Plan, Spec};
 use serde::Serialize;
 
+/// `summary.json`: the outcome of the solve and the peak demands on each joint and contact.
 #[derive(Serialize, Debug, Clone)]
 pub struct Summary {
+    /// Whether the solver converged.
     pub converged: bool,
     /// Why the solver stopped.
     pub reason: String,
@@ -14,66 +16,92 @@ pub struct Summary {
     pub objective_kind: String,
     /// The same for the initial guess.
     pub initial_guess_objective: f64,
+    /// The solver, as [`crate::plan::SolverKind::name`] describes it.
     pub solver: String,
+    /// Solver iterations.
     pub iterations: usize,
+    /// Outer (multiplier-update) iterations of the augmented Lagrangian.
     pub outer_iterations: usize,
+    /// Evaluations of the transcription (residuals and Jacobians).
     pub evaluations: usize,
+    /// Wall-clock time of the solve (s).
     pub solve_seconds: f64,
+    /// Final relative stationarity (KKT residual).
     pub stationarity: f64,
+    /// B-spline control points per joint, N.
     pub control_points: usize,
+    /// The quadrature of the objective and constraints.
     pub quadrature: Quadrature,
+    /// Duration of the motion `T` (s).
     pub duration_s: f64,
+    /// World gravity (m/s²).
     pub gravity_m_s2: [f64; 3],
     /// Worst scaled constraint violation at the quadrature nodes, and which constraint.
     pub worst_violation_at_nodes: Option<Violation>,
     /// The same on a dense grid between the nodes.
     pub worst_violation_between_nodes: Option<Violation>,
+    /// Peak torques, per joint.
     pub joints: Vec<JointSummary>,
+    /// Peak forces and drift, per contact.
     pub contacts: Vec<ContactSummary>,
     /// Every start's effort and outcome (`solver.starts`), and the index of the one this plan is.
     pub starts: Vec<crate::plan::StartReport>,
+    /// Index in `starts` of the start this plan came from.
     pub best_start: usize,
-    /// The levels of the refinement of N (empty when the task fixed N), and the relative change of the
-    /// effort at the last one — the discretisation's error estimate.
+    /// The levels of the refinement of N (empty when the task fixed N).
     pub refinement: Vec<crate::plan::Level>,
+    /// The relative change of the effort at the last refinement: the discretisation's error estimate.
     pub effort_change_last_refinement: Option<f64>,
 }
 
+/// How the time integral is discretised.
 #[derive(Serialize, Debug, Clone)]
 pub struct Quadrature {
+    /// The rule's name ("Gauss–Legendre").
     pub rule: &'static str,
+    /// Nodes per knot span.
     pub nodes_per_span: usize,
+    /// Nodes in all.
     pub nodes: usize,
 }
 
+/// A constraint violation and which constraint.
 #[derive(Serialize, Debug, Clone)]
 pub struct Violation {
     /// Scaled: radians over the joint's range, torque over its limit, metres for contacts, …
     pub value: f64,
+    /// The constraint's name: its kind, joint or contact, and where.
     pub constraint: String,
 }
 
+/// The demands of the plan on one joint.
 #[derive(Serialize, Debug, Clone)]
 pub struct JointSummary {
+    /// The joint's name.
     pub name: String,
     /// Peak |active torque| (N·m, N for prismatic joints) and when it occurs (s).
     pub peak_abs_torque: f64,
+    /// When the peak torque occurs (s).
     pub peak_time_s: f64,
     /// The joint's effort limit, if any.
     pub torque_limit: Option<f64>,
 }
 
+/// The demands of the plan on one contact.
 #[derive(Serialize, Debug, Clone)]
 pub struct ContactSummary {
+    /// The contact's name.
     pub name: String,
     /// Peak |force| on the figure (N) and the least force along the ground normal (N; negative = a pull).
     pub peak_force_n: f64,
+    /// The least force along the ground normal (N), for a push-only contact.
     pub min_normal_force_n: Option<f64>,
     /// Largest distance of the frame from its target over the samples (m).
     pub max_drift_m: f64,
 }
 
 impl Summary {
+    /// The summary of `plan`, solved for `spec`, with the samples `samples`.
     pub fn new(spec: &Spec, plan: &Plan, samples: &[NodeValues]) -> Summary {
         let model = &spec.model;
         let joints = model.joints[1..]

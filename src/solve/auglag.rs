@@ -693,6 +693,7 @@ impl InnerSolver for BfgsInner {
 /// Memory `O(n²)` for the inverse Hessian.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct AugLagBfgs {
+    /// The inner BFGS's Wolfe line search.
     pub line_search: LineSearch,
 }
 

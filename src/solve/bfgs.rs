@@ -17,6 +17,7 @@ pub struct BfgsSettings {
     pub max_iterations: usize,
     /// Stop when `‖∇f‖∞ ≤ gradient_tolerance · objective.gradient_scale()`.
     pub gradient_tolerance: f64,
+    /// The Wolfe line search.
     pub line_search: LineSearch,
 }
 
@@ -29,22 +30,28 @@ impl Default for BfgsSettings {
 /// Why a minimisation stopped.
 #[derive(Clone, Debug, PartialEq)]
 pub enum BfgsStatus {
+    /// `‖∇f‖∞` fell below the tolerance.
     Converged,
+    /// The step budget ran out.
     MaxIterations,
     /// No step with sufficient decrease along the quasi-Newton direction, nor along steepest descent.
     LineSearchFailed,
     /// [`Objective::iteration_done`] asked to stop.
     Stopped,
+    /// The objective failed to evaluate; the message says why.
     EvaluationError(String),
 }
 
 /// Summary of a minimisation; the final point is left in the caller's `x`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BfgsReport {
+    /// Why it stopped.
     pub status: BfgsStatus,
     /// Accepted steps.
     pub iterations: usize,
+    /// Objective evaluations.
     pub evaluations: usize,
+    /// `f` at the final point.
     pub f: f64,
     /// `‖∇f(x)‖∞` at the final point.
     pub gradient_norm: f64,
@@ -69,6 +76,7 @@ pub struct Bfgs {
 }
 
 impl Bfgs {
+    /// A minimiser of `n` unknowns, starting from `H = I`.
     pub fn new(n: usize) -> Self {
         Bfgs {
             n,

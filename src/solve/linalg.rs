@@ -12,6 +12,7 @@ use nalgebra::{Cholesky as DenseCholesky, DMatrix, DVectorViewMut, Dyn};
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
 #[error("matrix is not positive definite (pivot {pivot})")]
 pub struct NotPositiveDefinite {
+    /// Index of the row whose pivot was not positive.
     pub pivot: usize,
 }
 
@@ -53,6 +54,7 @@ impl SymmetricMatrix {
         }
     }
 
+    /// Rows (and columns).
     pub fn n(&self) -> usize {
         self.n
     }
@@ -65,10 +67,12 @@ impl SymmetricMatrix {
         }
     }
 
+    /// Whether stored as a band.
     pub fn is_banded(&self) -> bool {
         matches!(self.storage, Storage::Banded { .. })
     }
 
+    /// Sets every entry to zero, keeping the storage.
     pub fn fill_zero(&mut self) {
         match &mut self.storage {
             Storage::Banded { band, .. } => band.fill(0.0),

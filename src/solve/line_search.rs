@@ -33,7 +33,9 @@ impl std::fmt::Display for EvalError {
 pub struct Iterate<'a> {
     /// Accepted steps so far in this minimisation (0 for the starting point).
     pub iteration: usize,
+    /// The point.
     pub x: &'a [f64],
+    /// `f(x)`.
     pub f: f64,
     /// `‖∇f(x)‖∞`.
     pub gradient_norm: f64,
@@ -81,18 +83,25 @@ impl Default for LineSearch {
 /// objective was last evaluated there.
 #[derive(Clone, Debug, PartialEq)]
 pub enum LineSearchResult {
+    /// A step satisfying the strong Wolfe conditions.
     Accepted {
+        /// The step length.
         alpha: f64,
+        /// `f` at the new point.
         f: f64,
+        /// Objective evaluations of the search.
         evaluations: usize,
     },
     /// No acceptable step: `p` is not a descent direction, or no point with sufficient decrease was found.
     Failed {
+        /// Objective evaluations of the search.
         evaluations: usize,
     },
     /// The objective failed, or no finite point was found along `p`.
     Error {
+        /// Objective evaluations of the search.
         evaluations: usize,
+        /// Why the objective failed.
         error: EvalError,
     },
 }
@@ -100,11 +109,14 @@ pub enum LineSearchResult {
 /// Buffers for the trial point and its gradient, allocated once per minimisation.
 #[derive(Clone, Debug)]
 pub struct LineSearchWork {
+    /// The trial point.
     pub x: Vec<f64>,
+    /// The gradient there.
     pub gradient: Vec<f64>,
 }
 
 impl LineSearchWork {
+    /// Buffers for `n` unknowns.
     pub fn new(n: usize) -> Self {
         LineSearchWork { x: vec![0.0; n], gradient: vec![0.0; n] }
     }

@@ -30,8 +30,11 @@ pub struct Dims {
 /// the order of its list.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Patterns {
+    /// Columns of each residual row `∂rᵢ/∂x`.
     pub r: Vec<Vec<usize>>,
+    /// Columns of each equality row `∂hₖ/∂x`.
     pub h: Vec<Vec<usize>>,
+    /// Columns of each inequality row `∂gᵢ/∂x`.
     pub g: Vec<Vec<usize>>,
 }
 
@@ -66,7 +69,9 @@ impl std::fmt::Display for ConstraintKind {
 /// vector means all ones.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Scales {
+    /// Scales of the equalities `h` (empty = all ones).
     pub eq: Vec<f64>,
+    /// Scales of the inequalities `g` (empty = all ones).
     pub ineq: Vec<f64>,
 }
 
@@ -86,27 +91,50 @@ pub enum RowFamily {
 /// before the call, so a problem may accumulate into them with [`SparseMatrix::add`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Evaluation {
+    /// Residuals `r(x)` of the objective `F = ½‖r‖²`.
     pub r: Vec<f64>,
+    /// Equality constraints `h(x)`.
     pub h: Vec<f64>,
+    /// Inequality constraints `g(x)`.
     pub g: Vec<f64>,
+    /// `∂r/∂x`, on [`Patterns::r`].
     pub jr: SparseMatrix,
+    /// `∂h/∂x`, on [`Patterns::h`].
     pub jh: SparseMatrix,
+    /// `∂g/∂x`, on [`Patterns::g`].
     pub jg: SparseMatrix,
 }
 
 /// A problem's description does not hang together.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum ProblemError {
+    /// A pattern has the wrong number of rows.
     #[error("jacobian pattern of {which}: {rows} rows, but dims say {expected}")]
-    PatternRows { which: &'static str, rows: usize, expected: usize },
+    PatternRows {
+        /// Which pattern: "r", "h" or "g".
+        which: &'static str,
+        /// Rows it has.
+        rows: usize,
+        /// Rows [`Dims`] says it should have.
+        expected: usize,
+    },
+    /// A pattern is malformed.
     #[error("jacobian pattern of {which}: {source}")]
     Pattern {
+        /// Which pattern: "r", "h" or "g".
         which: &'static str,
+        /// What is wrong with it.
         #[source]
         source: PatternError,
     },
+    /// The scales have the wrong length or are not positive and finite.
     #[error("scales of the {kind} constraints: {message}")]
-    Scales { kind: ConstraintKind, message: String },
+    Scales {
+        /// Equality or inequality scales.
+        kind: ConstraintKind,
+        /// What is wrong with them.
+        message: String,
+    },
 }
 
 impl Evaluation {
@@ -158,6 +186,7 @@ impl Evaluation {
 
 /// A finite-dimensional constrained least-squares problem.
 pub trait Problem {
+    /// Sizes of `x`, `r`, `h` and `g`.
     fn dims(&self) -> Dims;
 
     /// Sparsity of the Jacobians (called once per solve).

@@ -26,7 +26,9 @@ use super::problem::{ConstraintKind, Problem};
 /// `mu` for the equalities `h = 0`.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Multipliers {
+    /// Multipliers of the inequalities `g ≤ 0`, `λᵢ ≥ 0`.
     pub lambda: Vec<f64>,
+    /// Multipliers of the equalities `h = 0`.
     pub mu: Vec<f64>,
 }
 
@@ -82,6 +84,7 @@ pub struct Progress {
     pub outer_iteration: usize,
     /// Inner iterations (accepted steps) so far, over the whole solve.
     pub iteration: usize,
+    /// Calls to [`Problem::evaluate`] so far.
     pub evaluations: usize,
     /// `F(x) = ½‖r‖²`.
     pub objective: f64,
@@ -97,8 +100,11 @@ pub struct Progress {
 /// A constraint, identified and named.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ConstraintRef {
+    /// Equality or inequality.
     pub kind: ConstraintKind,
+    /// Row index among its kind.
     pub index: usize,
+    /// What the problem calls it (joint, quantity, time).
     pub name: String,
 }
 
@@ -119,9 +125,12 @@ pub enum StopReason {
     /// The penalty reached its maximum and the constraints are still violated: probably no feasible point
     /// near here. Names the worst constraint and its scaled violation.
     Infeasible {
+        /// The worst constraint's name.
         worst: String,
+        /// Its scaled violation.
         violation: f64,
     },
+    /// The wall-clock budget (`Settings::time_limit`) ran out.
     TimeLimit,
     /// The problem failed to evaluate or produced NaN/∞ at an accepted point.
     EvaluationError(String),
@@ -149,11 +158,13 @@ impl fmt::Display for StopReason {
 /// The result of a solve: always the best point reached, with an honest account of it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Outcome {
+    /// The best point reached.
     pub x: Vec<f64>,
     /// `F(x)`.
     pub objective: f64,
     /// Whether the convergence test of the [module docs](self) holds at `x` with `multipliers`.
     pub converged: bool,
+    /// Why the solve stopped.
     pub reason: StopReason,
     /// Inner iterations (accepted steps).
     pub iterations: usize,
@@ -165,6 +176,7 @@ pub struct Outcome {
     pub stationarity: f64,
     /// Largest scaled violation, and which constraint has it (`None` if there are no constraints).
     pub worst_violation: f64,
+    /// The constraint with `worst_violation`.
     pub worst_constraint: Option<ConstraintRef>,
     /// Multipliers at `x`, in the problem's units; pass them back as [`Settings::warm_start`] to resume.
     pub multipliers: Multipliers,

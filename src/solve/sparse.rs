@@ -16,12 +16,36 @@ use super::linalg::SymmetricMatrix;
 /// Why a sparsity pattern was rejected.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum PatternError {
+    /// A column index is not below the number of columns.
     #[error("row {row}: column {col} is out of range (there are {ncols} columns)")]
-    ColumnOutOfRange { row: usize, col: usize, ncols: usize },
+    ColumnOutOfRange {
+        /// The row.
+        row: usize,
+        /// The column listed.
+        col: usize,
+        /// Columns of the matrix.
+        ncols: usize,
+    },
+    /// A row lists a column twice.
     #[error("row {row}: column {col} is listed twice")]
-    DuplicateColumn { row: usize, col: usize },
+    DuplicateColumn {
+        /// The row.
+        row: usize,
+        /// The column listed twice.
+        col: usize,
+    },
+    /// A row reaches outside the band the matrix is meant to have.
     #[error("row {row} spans columns {first}..={last}, wider than the target band of half-width {bandwidth}")]
-    OutsideBand { row: usize, first: usize, last: usize, bandwidth: usize },
+    OutsideBand {
+        /// The row.
+        row: usize,
+        /// Its first column.
+        first: usize,
+        /// Its last column.
+        last: usize,
+        /// The half-bandwidth of the band.
+        bandwidth: usize,
+    },
 }
 
 /// A sparse `nrows × ncols` matrix with a fixed pattern.
@@ -63,10 +87,12 @@ impl SparseMatrix {
         Self::from_rows(ncols, &rows).unwrap_or_else(|_| unreachable!())
     }
 
+    /// Number of rows.
     pub fn nrows(&self) -> usize {
         self.row_ptr.len() - 1
     }
 
+    /// Number of columns.
     pub fn ncols(&self) -> usize {
         self.ncols
     }
@@ -101,10 +127,12 @@ impl SparseMatrix {
         &self.values
     }
 
+    /// All values, row after row, for writing.
     pub fn values_mut(&mut self) -> &mut [f64] {
         &mut self.values
     }
 
+    /// Sets every stored value to zero, keeping the pattern.
     pub fn fill_zero(&mut self) {
         self.values.fill(0.0);
     }

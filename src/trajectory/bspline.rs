@@ -37,8 +37,11 @@ const MAX_NODES_PER_SPAN: usize = 1000;
 pub struct BasisAt {
     /// Index of the first of the four control points that matter at `t` (also the span index).
     pub first: usize,
+    /// Basis values `B_{first+k}(t)`.
     pub b: [f64; ORDER],
+    /// First time derivatives (1/s).
     pub db: [f64; ORDER],
+    /// Second time derivatives (1/s²).
     pub ddb: [f64; ORDER],
 }
 
@@ -93,14 +96,17 @@ pub struct Nodes {
     pub t: Vec<f64>,
     /// Integration weights in seconds: `Σ w f(t) ≈ ∫₀ᵀ f dt` for quadrature nodes, 0 for a grid.
     pub w: Vec<f64>,
+    /// The basis functions at each time.
     pub basis: Vec<BasisAt>,
 }
 
 impl Nodes {
+    /// Number of times.
     pub fn len(&self) -> usize {
         self.t.len()
     }
 
+    /// Whether there are no times.
     pub fn is_empty(&self) -> bool {
         self.t.is_empty()
     }

@@ -17,7 +17,9 @@ use std::f64::consts::PI;
 /// likewise; for odd `n` the middle node is exactly 0.
 #[derive(Clone, Debug, PartialEq)]
 pub struct GaussLegendre {
+    /// Nodes on `[−1, 1]`, ascending.
     pub nodes: Vec<f64>,
+    /// Weights, summing to 2.
     pub weights: Vec<f64>,
 }
 

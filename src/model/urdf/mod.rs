@@ -25,6 +25,7 @@ mod schema;
 /// How to read what the engine does not model.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Options {
+    /// What to do with `<mimic>` joints.
     pub mimic: Mimic,
 }
 

@@ -28,10 +28,15 @@ use std::path::{Path, PathBuf};
 
 /// A task read from a file and resolved.
 pub struct Task {
+    /// The task file.
     pub path: PathBuf,
+    /// The file as parsed.
     pub file: TaskFile,
+    /// The planning problem it resolves to.
     pub spec: Spec,
+    /// `solver.method`.
     pub solver: SolverKind,
+    /// `[solver]`'s settings, over [`Settings::default`].
     pub settings: Settings,
     /// `solver.starts` and `solver.seed`.
     pub multistart: MultiStart,

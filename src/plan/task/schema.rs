@@ -12,21 +12,30 @@ use std::path::PathBuf;
 /// A posture: joint name → value in degrees (revolute) or metres (prismatic).
 pub type Posture = BTreeMap<String, f64>;
 
+/// A whole task file, one field per `[section]`; only `[model]` and `[motion]` are required.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TaskFile {
+    /// `[model]`: the figure.
     pub model: ModelSection,
+    /// `[motion]`: duration, start and goal postures.
     pub motion: MotionSection,
+    /// `[environment]`: gravity, payloads, forces, passive joints.
     #[serde(default)]
     pub environment: EnvironmentSection,
+    /// `[constraints]`: limits, contacts, balance.
     #[serde(default)]
     pub constraints: ConstraintsSection,
+    /// `[objective]`: what is minimised.
     #[serde(default)]
     pub objective: ObjectiveSection,
+    /// `[discretization]`: the B-spline transcription.
     #[serde(default)]
     pub discretization: DiscretizationSection,
+    /// `[solver]`: method, starts and settings.
     #[serde(default)]
     pub solver: SolverSection,
+    /// `[output]`: what the plan directory holds.
     #[serde(default)]
     pub output: OutputSection,
 }
@@ -41,20 +50,24 @@ pub struct ModelSection {
     pub figure: Option<PathBuf>,
     /// A built-in human structure (`mintorque examples` lists them), scaled by `stature` (m) and `mass` (kg).
     pub human: Option<String>,
+    /// Stature of the built-in human (m).
     pub stature: Option<f64>,
+    /// Total mass of the built-in human (kg).
     pub mass: Option<f64>,
     /// Joints welded at a value for this task (degrees, metres for prismatic): fewer degrees of freedom.
     #[serde(default)]
     pub lock: BTreeMap<String, f64>,
 }
 
+/// `[motion]`: what the figure is to do.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MotionSection {
     /// Seconds.
     pub duration: f64,
-    /// Joints not named are at 0, or at the base posture's value.
+    /// Start posture; joints not named are at 0, or at the base posture's value.
     pub start: Posture,
+    /// Goal posture, like `start`.
     pub goal: Posture,
     /// The posture unnamed joints take: "zero" (default) or, for a built-in human, "reference" (standing /
     /// dead hang / top of a push-up).
@@ -74,10 +87,13 @@ pub struct MotionSection {
     pub close_loop_with: Vec<String>,
 }
 
+/// A `[[motion.via]]` posture of the initial guess.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Via {
+    /// When the guess passes through it (s).
     pub t: f64,
+    /// The joints it sets (degrees, metres for prismatic).
     pub posture: Posture,
 }
 
@@ -93,7 +109,9 @@ fn zero() -> String {
 #[derive(Clone, Debug, Serialize)]
 #[serde(untagged)]
 pub enum Gravity {
+    /// "earth" (default), "mars", "moon" or "space" ([`super::gravity_preset`]).
     Preset(String),
+    /// `[gx, gy, gz]` (m/s²).
     Vector([f64; 3]),
 }
 
@@ -131,9 +149,11 @@ impl Default for Gravity {
     }
 }
 
+/// `[environment]`: what acts on the figure besides its joints.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct EnvironmentSection {
+    /// World gravity (default earth, 9.81 m/s² along −z).
     #[serde(default)]
     pub gravity: Gravity,
     /// The world axis that is up ("+z" default, "+y", …): gravity presets pull along −up.
@@ -160,11 +180,13 @@ impl Default for EnvironmentSection {
     }
 }
 
+/// A `[[environment.payload]]`: a rigid body welded to a frame.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Payload {
+    /// The frame that holds it.
     pub frame: String,
-    /// kg
+    /// Mass (kg).
     pub mass: f64,
     /// Centre of mass in the frame (m), default its origin.
     #[serde(default, deserialize_with = "exact::array")]
@@ -174,29 +196,33 @@ pub struct Payload {
     pub inertia: [f64; 3],
 }
 
+/// A `[[environment.force]]`: a constant force at a frame's origin.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ForceLoad {
+    /// The frame it acts at.
     pub frame: String,
-    /// N, world axes.
+    /// Force (N), world axes.
     #[serde(deserialize_with = "exact::array")]
     pub force: [f64; 3],
 }
 
+/// An `[environment.passive]` entry: the joint's spring and damper (paper section 7.2).
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PassiveSpec {
-    /// N·m/rad
+    /// Spring stiffness (N·m/rad, N/m for prismatic); default 0.
     #[serde(default)]
     pub stiffness: f64,
-    /// degrees
+    /// Spring rest position (degrees, metres for prismatic); default 0.
     #[serde(default)]
     pub rest: f64,
-    /// N·m·s/rad
+    /// Viscous damping (N·m·s/rad, N·s/m for prismatic); default 0.
     #[serde(default)]
     pub damping: f64,
 }
 
+/// `[constraints]`: what the motion must respect.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ConstraintsSection {
@@ -212,8 +238,10 @@ pub struct ConstraintsSection {
     /// Overrides: joint → |τ| limit in N·m (N for prismatic).
     #[serde(default)]
     pub torque_limit: BTreeMap<String, f64>,
+    /// `[[constraints.contact]]`: frames held by the environment (eq. 13).
     #[serde(default)]
     pub contact: Vec<ContactSpec>,
+    /// `[constraints.balance]`: keep the centre of pressure over the feet.
     pub balance: Option<BalanceSpec>,
 }
 
@@ -230,11 +258,13 @@ impl Default for ConstraintsSection {
     }
 }
 
+/// A `[[constraints.contact]]`: a frame held at a point, on a plane or on a line.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ContactSpec {
-    /// Defaults to the frame's name.
+    /// Its name in reports; defaults to the frame's name.
     pub name: Option<String>,
+    /// The frame held.
     pub frame: String,
     /// "point" (default), "plane" or "line".
     #[serde(default = "point", rename = "type")]
@@ -259,22 +289,26 @@ fn point() -> String {
     "point".into()
 }
 
+/// `[constraints.balance]`: the support rectangle the centre of pressure stays in.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BalanceSpec {
-    /// Support rectangle, world metres.
+    /// Support rectangle's `[x_min, x_max]` (m, world).
     #[serde(deserialize_with = "exact::array")]
     pub x: [f64; 2],
+    /// Support rectangle's `[y_min, y_max]` (m, world).
     #[serde(deserialize_with = "exact::array")]
     pub y: [f64; 2],
+    /// Height of the ground plane (m, world); default 0.
     #[serde(default)]
     pub ground_z: f64,
 }
 
+/// `[objective]`: what is minimised.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ObjectiveSection {
-    /// "torque": ½∫τᵀWτ dt of the active torques.
+    /// "torque" (default): ½∫τᵀWτ dt of the active torques; "torque_inverse_inertia": ½∫τᵀH⁻¹τ dt (eq. 12).
     #[serde(default = "torque")]
     pub kind: String,
     /// Joint → weight (default 1).
@@ -292,15 +326,17 @@ impl Default for ObjectiveSection {
     }
 }
 
+/// `[discretization]`: the B-spline transcription of the motion.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DiscretizationSection {
-    /// N per joint (the first level when `refine`).
+    /// B-spline control points per joint, N (default 16; the first level when `refine`).
     #[serde(default = "first_control_points")]
     pub control_points: usize,
     /// Refine N from `control_points` until the effort changes by < 0.5 % (`plan::plan_refined`).
     #[serde(default)]
     pub refine: bool,
+    /// Gauss–Legendre nodes per knot span (default 4).
     #[serde(default = "four")]
     pub nodes_per_span: usize,
     /// "linear" (default), "via" (through `motion.via`), or a CSV file of `time, joint…` in degrees.
@@ -326,9 +362,11 @@ impl Default for DiscretizationSection {
     }
 }
 
+/// `[solver]`: how the transcribed problem is solved.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SolverSection {
+    /// The solver (default "structured").
     #[serde(default = "structured")]
     pub method: SolverKind,
     /// Starting points solved in parallel, the best plan kept (`plan::multistart`).
@@ -337,6 +375,7 @@ pub struct SolverSection {
     /// Seed of the perturbed starts.
     #[serde(default = "default_seed")]
     pub seed: u64,
+    /// Tolerances and budgets, written in `[solver]` itself.
     #[serde(default, flatten)]
     pub settings: SolverSettings,
 }
@@ -373,6 +412,7 @@ pub struct SolverSettings {
     /// Scaled constraint-violation tolerance.
     #[serde(default = "tol")]
     pub violation_tolerance: f64,
+    /// Iteration cap (default 5000).
     #[serde(default = "max_iterations")]
     pub max_iterations: usize,
     /// Seconds (default 60).
@@ -402,6 +442,7 @@ impl Default for SolverSettings {
     }
 }
 
+/// `[output]`: what the plan directory holds.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct OutputSection {

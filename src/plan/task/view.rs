@@ -25,6 +25,7 @@ impl View {
         }
     }
 
+    /// The view's name in task files and on the command line.
     pub fn name(self) -> &'static str {
         match self {
             View::Side => "side",

@@ -31,13 +31,17 @@ pub use constraints::IneqRow;
 /// Where each control point's unknowns sit in `x`.
 #[derive(Clone, Debug)]
 pub struct Layout {
+    /// Degrees of freedom.
     pub nv: usize,
+    /// Control points per joint, N.
     pub n_ctrl: usize,
     /// Contact-force components per control point.
     pub n_lambda: usize,
     /// Control points whose joint values are fixed by the boundary conditions.
     pub fixed: Vec<bool>,
+    /// Index in `x` of each control point's first unknown.
     pub block_start: Vec<usize>,
+    /// Number of unknowns.
     pub n: usize,
     /// Contact forces are stored as `λ / lambda_scale` (the figure's weight, N) so that every unknown is of
     /// order one — Levenberg–Marquardt's damping then treats radians and newtons alike.
@@ -45,6 +49,9 @@ pub struct Layout {
 }
 
 impl Layout {
+    /// The layout of `n_ctrl` control points of `nv` joints and `n_lambda` contact-force components; the
+    /// first and last (and, with `zero_end_velocity`, the second and second-to-last) joint control points are
+    /// fixed.
     pub fn new(nv: usize, n_ctrl: usize, n_lambda: usize, zero_end_velocity: bool, lambda_scale: f64) -> Layout {
         let fixed: Vec<bool> =
             (0..n_ctrl).map(|j| j == 0 || j + 1 == n_ctrl || (zero_end_velocity && (j == 1 || j + 2 == n_ctrl))).collect();
@@ -57,10 +64,12 @@ impl Layout {
         Layout { nv, n_ctrl, n_lambda, fixed, block_start, n, lambda_scale }
     }
 
+    /// Index in `x` of joint `i` at control point `j`, `None` when it is fixed.
     pub fn joint_var(&self, j: usize, i: usize) -> Option<usize> {
         (!self.fixed[j]).then(|| self.block_start[j] + i)
     }
 
+    /// Index in `x` of contact-force component `m` at control point `j`.
     pub fn lambda_var(&self, j: usize, m: usize) -> usize {
         self.block_start[j] + if self.fixed[j] { 0 } else { self.nv } + m
     }
@@ -137,17 +146,24 @@ struct ContactInfo {
     tangents: (Vec3, Vec3),
 }
 
+/// The planning problem transcribed: the motion as cubic B-splines, the objective and the
+/// constraints evaluated at Gauss–Legendre nodes — what the solvers see as a [`crate::solve::Problem`].
 pub struct Transcription<'s> {
+    /// The problem transcribed.
     pub spec: &'s Spec,
+    /// The B-spline of every joint (and contact force).
     pub spline: CubicBSpline,
+    /// The quadrature nodes of the objective and the inequality constraints.
     pub nodes: Nodes,
     /// Where the contacts (loop closures) are imposed: the interior knots and the end spans' midpoints. Imposing them
     /// at every quadrature node would ask more of a cubic spline than it has freedom for (a curved closure
     /// manifold cannot be followed exactly); between these points the drift is measured and reported.
     pub contact_nodes: Nodes,
+    /// Where the unknowns sit in `x`.
     pub layout: Layout,
     /// Joint control points fixed by the boundary conditions (`n_ctrl × nv`; free entries unused).
     pub fixed_values: Vec<f64>,
+    /// The inequality rows, in order, at each node.
     pub ineq_rows: Vec<IneqRow>,
     contacts: Vec<ContactInfo>,
     load_paths: Vec<Vec<usize>>,
@@ -348,6 +364,7 @@ impl<'s> Transcription<'s> {
         }
     }
 
+    /// Degrees of freedom.
     pub fn nv(&self) -> usize {
         self.layout.nv
     }
@@ -687,9 +704,13 @@ impl Problem for Transcription<'_> {
 /// Everything known about the motion at one time.
 #[derive(Clone, Debug, Default)]
 pub struct NodeValues {
+    /// Time (s).
     pub t: f64,
+    /// Joint positions (rad or m).
     pub q: Vec<f64>,
+    /// Joint velocities (rad/s or m/s).
     pub qd: Vec<f64>,
+    /// Joint accelerations (rad/s² or m/s²).
     pub qdd: Vec<f64>,
     /// Active (muscle) torques: total minus passive, contact and load contributions.
     pub tau: Vec<f64>,
@@ -728,6 +749,7 @@ impl Transcription<'_> {
         self.n_nodes()
     }
 
+    /// Whether there are no nodes.
     pub fn is_empty(&self) -> bool {
         self.n_nodes() == 0
     }

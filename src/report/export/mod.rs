@@ -28,8 +28,10 @@ pub enum Format {
 }
 
 impl Format {
+    /// Every format, in the order the CLI lists them.
     pub const ALL: [Format; 4] = [Format::Bvh, Format::Gltf, Format::Mot, Format::Csv];
 
+    /// The format's name on the command line, also its file extension.
     pub fn name(&self) -> &'static str {
         match self {
             Format::Bvh => "bvh",

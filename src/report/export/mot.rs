@@ -9,6 +9,7 @@ use crate::report::ergonomics::position_factor;
 use crate::report::record::PlanRecord;
 use std::fmt::Write as _;
 
+/// The plan's joint trajectories as an OpenSim `.mot` file.
 pub fn mot(model: &Model, record: &PlanRecord) -> String {
     let joints = &model.joints[1..];
     let mut out = String::new();
