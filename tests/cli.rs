@@ -336,3 +336,36 @@ fn a_plan_killed_at_random_times_leaves_a_whole_plan() {
         assert_eq!(on_disk, loaded.files.len() + 1, "after kill {k}: files beside the manifest's");
     }
 }
+
+/// `plan --warm-start DIR` re-plans from a plan directory's unknowns and multipliers: at an optimum, at
+/// once (closed loop included); a plan of another N is refused naming the directory and the fix.
+#[test]
+fn a_warm_start_from_a_plan_directory_converges_at_once() {
+    let dir = scratch("warm");
+    for example in ["arm_lift_earth", "push_up"] {
+        let (first, again) = (dir.join(format!("{example}-1")), dir.join(format!("{example}-2")));
+        let task = format!("examples/{example}.toml");
+        let (code, _, err) = run(mintorque().args(["plan", &task, "-q", "--no-plots", "--out"]).arg(&first).current_dir(root()));
+        assert_eq!(code, 0, "{err}");
+        let (code, _, err) = run(mintorque()
+            .args(["plan", &task, "-q", "--no-plots", "--warm-start"])
+            .arg(&first)
+            .arg("--out")
+            .arg(&again)
+            .current_dir(root()));
+        assert_eq!(code, 0, "{err}");
+        let summary: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(again.join("summary.json")).unwrap()).unwrap();
+        let iterations = summary["iterations"].as_u64().unwrap();
+        assert!(iterations <= 5, "{example}: {iterations} iterations from its own optimum");
+        assert_eq!(summary["converged"], true);
+    }
+    let (code, _, err) = run(mintorque()
+        .args(["plan", "examples/arm_lift_earth.toml", "-q", "--no-plots", "--control-points", "9", "--warm-start"])
+        .arg(dir.join("arm_lift_earth-1"))
+        .arg("--out")
+        .arg(dir.join("other-n"))
+        .current_dir(root()));
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("arm_lift_earth-1") && err.contains("--control-points 16"), "{err}");
+}

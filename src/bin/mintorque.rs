@@ -42,6 +42,9 @@ enum Command {
         /// Refine the number of control points until the effort changes by less than 0.5 %.
         #[arg(long)]
         refine: bool,
+        /// Start from the plan in this directory (same figure and N): its motion, forces and multipliers.
+        #[arg(long)]
+        warm_start: Option<PathBuf>,
         /// No progress output.
         #[arg(long, short)]
         quiet: bool,
@@ -208,8 +211,18 @@ fn solve(task: &mut Task, quiet: bool) -> Result<plan::Plan> {
     Ok(planned)
 }
 
-fn run_plan(task_path: &Path, out: &Path, overrides: &Overrides, quiet: bool, no_plots: bool) -> Result<bool> {
+fn run_plan(
+    task_path: &Path,
+    out: &Path,
+    overrides: &Overrides,
+    warm_start: Option<&Path>,
+    quiet: bool,
+    no_plots: bool,
+) -> Result<bool> {
     let mut task = plan_dir::overrides::load_task(task_path, overrides)?;
+    if let Some(dir) = warm_start {
+        plan_dir::warm_start(&mut task, dir)?;
+    }
     let planned = solve(&mut task, quiet)?;
     let contents = PlanContents::from_task(&task, &planned, no_plots)?;
     plan_dir::write(out, &contents, &WriteOptions::default())?;
@@ -311,13 +324,14 @@ fn run_dynamics(model: &Path, read: ModelArgs, states: Option<PathBuf>, gravity:
 
 fn run(cli: Cli) -> Result<ExitCode> {
     match cli.command {
-        Command::Plan { task, out, solver, control_points, starts, refine, quiet, no_plots } => {
+        Command::Plan { task, out, solver, control_points, starts, refine, warm_start, quiet, no_plots } => {
             let solver = solver.map(|s| match s {
                 SolverArg::Structured => SolverKind::Structured,
                 SolverArg::Newton => SolverKind::Newton,
                 SolverArg::AuglagBfgs => SolverKind::AuglagBfgs,
             });
-            Ok(exit(run_plan(&task, &out, &Overrides { solver, control_points, starts, refine }, quiet, no_plots)?))
+            let overrides = Overrides { solver, control_points, starts, refine };
+            Ok(exit(run_plan(&task, &out, &overrides, warm_start.as_deref(), quiet, no_plots)?))
         }
         Command::Export { dir, format, out } => run_export(&dir, &format, out).map(|()| ExitCode::SUCCESS),
         Command::View { dir, filmstrip } => {

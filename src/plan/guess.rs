@@ -18,7 +18,7 @@ pub fn initial_x(spec: &Spec, problem: &mut Transcription) -> Result<Vec<f64>> {
                 let points: Vec<(f64, f64)> = vias.iter().map(|(t, q)| (*t, q[i])).collect();
                 spline.through_points(spec.start[i], &points, spec.goal[i])?
             }
-            InitialGuess::ControlPoints(c) => (0..n).map(|j| c[j * nv + i]).collect(),
+            InitialGuess::ControlPoints(c) | InitialGuess::Plan { ctrl: c, .. } => (0..n).map(|j| c[j * nv + i]).collect(),
             InitialGuess::Samples(samples) => {
                 let times: Vec<f64> = samples.iter().map(|(t, _)| *t).collect();
                 let values: Vec<f64> = samples.iter().map(|(_, q)| q[i]).collect();
@@ -28,6 +28,9 @@ pub fn initial_x(spec: &Spec, problem: &mut Transcription) -> Result<Vec<f64>> {
         for j in 0..n {
             ctrl[j * nv + i] = column[j];
         }
+    }
+    if let InitialGuess::Plan { lambda_ctrl, .. } = &spec.initial_guess {
+        return Ok(problem.layout.pack(&ctrl, lambda_ctrl));
     }
     let lambda = vec![0.0; n * problem.layout.n_lambda];
     let mut x = problem.layout.pack(&ctrl, &lambda);

@@ -113,6 +113,14 @@ pub enum InitialGuess {
     Via(Vec<(f64, Vec<f64>)>),
     /// Control points given (warm start), `n_ctrl × nv`, row-major.
     ControlPoints(Vec<f64>),
+    /// A previous plan's unknowns: joint control points (`n_ctrl × nv`) and contact-force control points
+    /// (`n_ctrl × n_lambda`, N), taken as they are (no refit of the forces) — a warm start.
+    Plan {
+        /// Joint control points (rad or m).
+        ctrl: Vec<f64>,
+        /// Contact-force control points (N).
+        lambda_ctrl: Vec<f64>,
+    },
     /// Samples `(t, q)` of a trajectory to fit.
     Samples(Vec<(f64, Vec<f64>)>),
 }

@@ -15,10 +15,12 @@ mod files;
 pub mod finite;
 pub mod manifest;
 pub mod overrides;
+mod warm;
 
 pub use atomic::{lock, Lock, WriteOptions};
 pub use files::PlanContents;
 pub use manifest::Manifest;
+pub use warm::warm_start;
 
 use crate::model::{figure, Model};
 use crate::plan::task::Task;
@@ -32,7 +34,6 @@ pub const FORMAT: &str = "mintorque-plan-dir-1";
 /// The manifest's file name.
 pub const MANIFEST: &str = "manifest.json";
 
-/// What can go wrong with a plan directory.
 /// What reading or writing a plan directory can fail with.
 #[derive(Debug, thiserror::Error)]
 pub enum Error {

@@ -73,6 +73,9 @@ pub struct PlanRecord {
     pub support: Option<[[f64; 2]; 2]>,
     /// Whether the solver converged.
     pub converged: bool,
+    /// The Lagrange multipliers at the plan (problem units), for a warm start; absent in older files.
+    #[serde(default)]
+    pub multipliers: Option<crate::solve::Multipliers>,
     /// The motion sampled at the output's sample rate.
     pub samples: Vec<SampleRecord>,
 }
@@ -106,6 +109,7 @@ impl PlanRecord {
                 .collect(),
             support: spec.balance.as_ref().map(|b| [b.x, b.y]),
             converged: plan.converged(),
+            multipliers: Some(plan.outcome.multipliers.clone()),
             samples: samples.iter().map(SampleRecord::from).collect(),
         }
     }
