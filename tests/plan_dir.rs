@@ -46,6 +46,7 @@ fn contents(amplitude: f64, contact: bool, plots: bool) -> PlanContents {
         contacts,
         support: None,
         converged: true,
+        multipliers: None,
         samples,
     };
     PlanContents { plots, ..PlanContents::from_record(m, record) }

@@ -47,6 +47,7 @@ fn record(model: &Model, times: &[f64], motion: impl Fn(usize, f64) -> [f64; 4])
         contacts: vec![],
         support: None,
         converged: true,
+        multipliers: None,
         samples,
     }
 }

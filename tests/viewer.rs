@@ -68,6 +68,7 @@ fn record(model: &Model, duration: f64, n: usize, amplitude: f64, contact_frames
         support: (!contacts.is_empty()).then_some([[-0.05, 0.25], [-0.15, 0.15]]),
         contacts,
         converged: true,
+        multipliers: None,
         samples,
     }
 }
