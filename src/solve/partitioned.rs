@@ -197,21 +197,8 @@ impl SecondOrderTerm {
         let epsilon = self.x_perturbed[j] - self.x_previous[j];
         let m = element.cols.len();
         let column = &mut self.secant[..m];
-        column.fill(0.0);
-        let mut at = 0;
-        for &(family, i) in &element.rows {
-            let mat = matrix(eval, family);
-            let range = mat.row_range(i);
-            let len = range.len();
-            let w = self.weights[family as usize][i];
-            if w != 0.0 {
-                let (now, before) = (&mat.values()[range.clone()], &self.previous[family as usize][range]);
-                for p in 0..len {
-                    column[element.local[at + p]] += w * (now[p] - before[p]);
-                }
-            }
-            at += len;
-        }
+        let weights = [&self.weights[0][..], &self.weights[1][..], &self.weights[2][..]];
+        weighted_difference(element, eval, &self.previous, weights, column);
         for (b, v) in column.iter().enumerate() {
             element.s[b * m + a] = v / epsilon;
         }
@@ -238,21 +225,7 @@ impl SecondOrderTerm {
             return;
         }
         // yₑ = Σⱼ wⱼ(x₊) (∇cⱼ(x₊) − ∇cⱼ(x)), over the element's columns
-        y.fill(0.0);
-        let mut at = 0;
-        for &(family, i) in &element.rows {
-            let mat = matrix(eval, family);
-            let range = mat.row_range(i);
-            let len = range.len();
-            let w = weights[family as usize][i];
-            if w != 0.0 {
-                let (now, before) = (&mat.values()[range.clone()], &self.previous[family as usize][range]);
-                for p in 0..len {
-                    y[element.local[at + p]] += w * (now[p] - before[p]);
-                }
-            }
-            at += len;
-        }
+        weighted_difference(element, eval, &self.previous, weights, y);
         if !element.nonzero && y.iter().all(|v| *v == 0.0) {
             return; // a linear element, or inactive rows: nothing to learn
         }
@@ -289,6 +262,26 @@ impl SecondOrderTerm {
                 }
             }
         }
+    }
+}
+
+/// `out = Pₑ Σ_{j∈e} wⱼ (∇cⱼ now − ∇cⱼ before)`: the change of element `e`'s weighted gradient between the
+/// Jacobian values `previous` and those in `eval`.
+fn weighted_difference(element: &Element, eval: &Evaluation, previous: &[Vec<f64>; 3], weights: [&[f64]; 3], out: &mut [f64]) {
+    out.fill(0.0);
+    let mut at = 0;
+    for &(family, i) in &element.rows {
+        let mat = matrix(eval, family);
+        let range = mat.row_range(i);
+        let len = range.len();
+        let w = weights[family as usize][i];
+        if w != 0.0 {
+            let (now, before) = (&mat.values()[range.clone()], &previous[family as usize][range]);
+            for p in 0..len {
+                out[element.local[at + p]] += w * (now[p] - before[p]);
+            }
+        }
+        at += len;
     }
 }
 
