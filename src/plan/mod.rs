@@ -240,7 +240,13 @@ pub fn check_between_nodes(spec: &Spec, x: &[f64], per_span: usize) -> Result<Op
     for (i, g) in eval.g.iter().enumerate() {
         consider(g.max(0.0) / scales.ineq[i], solve::ConstraintKind::Inequality, i);
     }
-    Ok(worst.map(|(v, kind, i)| (v, grid.constraint_name(kind, i))))
+    Ok(worst.map(|(v, kind, i)| {
+        let raw = match kind {
+            solve::ConstraintKind::Equality => eval.h[i],
+            solve::ConstraintKind::Inequality => eval.g[i],
+        };
+        (v, format!("{}: {}", grid.constraint_name(kind, i), grid.violation_in_units(kind, i, raw)))
+    }))
 }
 
 /// The planned motion sampled at `times` (s).

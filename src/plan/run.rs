@@ -7,7 +7,7 @@ use super::guess::{initial_x, objective_at};
 use super::multistart::{self, MultiStart, StartReport};
 use super::{check_between_nodes, validate, Plan, SolverKind, Spec, Transcription};
 use crate::error::{Error, Result};
-use crate::solve::{self, Outcome, Progress, Settings, Solver, StopReason};
+use crate::solve::{self, Outcome, Problem, Progress, Settings, Solver, StopReason};
 use std::time::{Duration, Instant};
 
 /// Plans the motion of `spec` from its initial guess: validates it, builds the guess, solves, and checks the
@@ -37,7 +37,8 @@ pub fn plan_with_starts(
     let runs = multistart::run_all(&guesses, observer, |x, observer| run_start(spec, solver, settings, deadline, x, observer))?;
     let best = multistart::best(&runs);
     let starts = runs.iter().enumerate().map(|(k, r)| StartReport::new(k, multi, &r.outcome, r.polished, r.seconds)).collect();
-    let run = runs.into_iter().nth(best).expect("at least one start");
+    let mut run = runs.into_iter().nth(best).expect("at least one start");
+    name_in_units(&mut run.outcome, &mut problem, spec)?;
     let nv = spec.model.nv();
     let mut ctrl = vec![0.0; spec.n_ctrl * nv];
     let mut lambda_ctrl = vec![0.0; spec.n_ctrl * problem.layout.n_lambda];
@@ -57,6 +58,22 @@ pub fn plan_with_starts(
         best_start: best,
         refinement: vec![],
     })
+}
+
+/// The worst constraint at the nodes named with its value in physical units.
+fn name_in_units(outcome: &mut Outcome, problem: &mut Transcription, spec: &Spec) -> Result<()> {
+    let Some(worst) = &mut outcome.worst_constraint else { return Ok(()) };
+    let dims = problem.dims();
+    let mut eval = solve::Evaluation::new(dims, &problem.jacobian_patterns())
+        .map_err(|e| Error::task(&spec.origin, "transcription", e.to_string()))?;
+    if problem.evaluate(&outcome.x, false, &mut eval).is_ok() {
+        let raw = match worst.kind {
+            solve::ConstraintKind::Equality => eval.h[worst.index],
+            solve::ConstraintKind::Inequality => eval.g[worst.index],
+        };
+        worst.name = format!("{}: {}", worst.name, problem.violation_in_units(worst.kind, worst.index, raw));
+    }
+    Ok(())
 }
 
 /// One start's result.

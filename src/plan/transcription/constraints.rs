@@ -5,7 +5,7 @@
 use super::{Derivatives, Transcription};
 use crate::dynamics::kinematics;
 use crate::dynamics::point_force::point_jacobian;
-use crate::solve::Evaluation;
+use crate::solve::{ConstraintKind, Evaluation};
 use crate::spatial::{Force, Vec3};
 
 /// One inequality row at a node.
@@ -174,5 +174,45 @@ impl Transcription<'_> {
                 }
             }
         }
+    }
+}
+
+impl Transcription<'_> {
+    /// A constraint's raw value (`h`, or `g` with `g ≤ 0` holding) in physical units: how far a contact is
+    /// off (mm), a joint past its limit (° or mm), a torque over it (N·m or N), a contact force pulling or
+    /// outside its cone (N), the balance moment outside the support (N·m).
+    pub fn violation_in_units(&self, kind: ConstraintKind, index: usize, raw: f64) -> String {
+        if kind == ConstraintKind::Equality {
+            return format!("{} mm off its target", num(raw.abs() * 1e3));
+        }
+        if raw <= 0.0 {
+            return "holds".into();
+        }
+        let (_, row) = self.decode_ineq(index);
+        let prismatic = |i: usize| self.spec.model.joints[i + 1].kind == crate::model::JointKind::Prismatic;
+        match row {
+            IneqRow::UpperPosition(i) | IneqRow::LowerPosition(i) if prismatic(i) => {
+                format!("{} mm past the limit", num(raw * 1e3))
+            }
+            IneqRow::UpperPosition(_) | IneqRow::LowerPosition(_) => format!("{}° past the limit", num(raw.to_degrees())),
+            IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) => {
+                let limit = self.effort[i];
+                let unit = if prismatic(i) { "N" } else { "N·m" };
+                format!("{} {unit} over the {limit:.1} {unit} limit ({} %)", num(raw), num(100.0 * raw / limit))
+            }
+            IneqRow::Push(_) => format!("pulls with {} N", num(raw)),
+            IneqRow::Friction(..) => format!("{} N outside the friction cone", num(raw)),
+            IneqRow::Balance(4) => format!("the ground pulls the feet with {} N", num(raw)),
+            IneqRow::Balance(_) => format!("{} N·m of moment beyond the support's edge", num(raw)),
+        }
+    }
+}
+
+/// A number for a person: three decimals, or three significant digits when small.
+fn num(v: f64) -> String {
+    if v.abs() < 0.01 {
+        format!("{v:.2e}")
+    } else {
+        format!("{v:.3}")
     }
 }
