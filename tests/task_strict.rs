@@ -127,3 +127,10 @@ fn errors_name_the_real_file() {
     assert!(e.contains("my-task.toml") && e.contains("model.mass"), "{e}");
     assert!(!e.starts_with("task:"), "{e}");
 }
+
+/// A strength override for a joint the model does not have names the file, the field and the joints.
+#[test]
+fn a_strength_override_of_an_unknown_joint_names_the_file_and_field() {
+    let text = with("[output]\nstrength = { nosuchjoint = 50.0 }");
+    assert_refused(&text, &["strict-task.toml", "output.strength.nosuchjoint", "shoulder"]);
+}

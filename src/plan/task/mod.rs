@@ -70,6 +70,7 @@ impl Task {
             file.output.filmstrip_view.parse::<View>().map_err(|m| Error::task(&origin, "output.filmstrip_view", m))?;
         let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
         let spec = resolve(&file, &base, &origin)?;
+        resolve::strength_names(&file, &spec.model, &origin)?;
         super::validate(&spec, &origin)?;
         let mut warnings = resolve::radian_warnings(&file, &spec.model, &origin);
         let up = up::axis(&file.environment.up, &origin)?;

@@ -359,3 +359,15 @@ pub(super) fn radian_warnings(file: &TaskFile, model: &Model, origin: &str) -> V
         })
         .collect()
 }
+
+/// `output.strength` names joints of the model.
+pub(super) fn strength_names(file: &TaskFile, model: &Model, origin: &str) -> Result<()> {
+    for name in file.output.strength.keys() {
+        if model.dof_index(name).is_none() {
+            let joints = model.joint_names().join(", ");
+            let message = format!("the model has no joint called \"{name}\"; its joints: {joints}");
+            return Err(Error::task(origin, &format!("output.strength.{name}"), message));
+        }
+    }
+    Ok(())
+}
