@@ -366,7 +366,7 @@ pub(super) fn strength_names(file: &TaskFile, model: &Model, origin: &str) -> Re
         if model.dof_index(name).is_none() {
             let joints = model.joint_names().join(", ");
             let message = format!("the model has no joint called \"{name}\"; its joints: {joints}");
-            return Err(Error::task(origin, &format!("output.strength.{name}"), message));
+            return Err(Error::task(origin, format!("output.strength.{name}"), message));
         }
     }
     Ok(())
