@@ -43,6 +43,8 @@ pub(super) struct HessianWork {
     omega_w: [f64; 6],
     /// The node's unknowns: global column, and up to three (z index, coefficient) pairs.
     local: Vec<LocalUnknown>,
+    /// Set during the term's passes: `eval_state` then skips the objective's residual rows.
+    pub(super) torques_only: bool,
 }
 
 impl HessianWork {
@@ -56,6 +58,7 @@ impl HessianWork {
             omega: vec![0.0; nv],
             omega_w: [0.0; 6],
             local: Vec::with_capacity(4 * (nv + nl)),
+            torques_only: false,
         }
     }
 }
@@ -142,6 +145,7 @@ impl Transcription<'_> {
         let d = 3 * nv + nl;
         self.node_state(k);
         self.save_state();
+        self.hess.torques_only = true;
         self.eval_state(true);
         let mut grad = std::mem::take(&mut self.hess.grad);
         let mut perturbed = std::mem::take(&mut self.hess.grad_perturbed);
@@ -165,6 +169,7 @@ impl Transcription<'_> {
             }
         }
         self.restore_state();
+        self.hess.torques_only = false;
         self.hess.grad = grad;
         self.hess.grad_perturbed = perturbed;
     }

@@ -484,6 +484,9 @@ impl<'s> Transcription<'s> {
                 }
             }
         }
+        if self.hess.torques_only {
+            return; // a pass of the second-order term reads the torques' derivatives only
+        }
         match spec.objective {
             Objective::Torque => {
                 for l in 0..nv {
