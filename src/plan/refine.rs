@@ -54,7 +54,6 @@ pub fn plan_refined(
     let mut best = plan_with_starts(spec, solver, settings, multi, observer)?;
     let mut best_spec = spec.clone();
     let mut levels = vec![level(spec.n_ctrl, &best)];
-    let mut previous = best.outcome.objective;
     let mut n = spec.n_ctrl;
     while best.converged() && 2 * (n - 3) + 3 <= refinement.max_control_points {
         n = 2 * (n - 3) + 3;
@@ -65,11 +64,10 @@ pub fn plan_refined(
         if !planned.converged() {
             break;
         }
-        let change = (planned.outcome.objective - previous).abs() / planned.outcome.objective.abs().max(f64::MIN_POSITIVE);
-        previous = planned.outcome.objective;
         best = planned;
         best_spec = Spec { initial_guess: spec.initial_guess.clone(), ..finer };
-        if change < refinement.tolerance {
+        // Both of the last two levels converged here (the loop only goes on from a converged plan).
+        if last_change(&levels).is_some_and(|change| change < refinement.tolerance) {
             break;
         }
     }

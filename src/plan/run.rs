@@ -38,7 +38,7 @@ pub fn plan_with_starts(
     let best = multistart::best(&runs);
     let starts = runs.iter().enumerate().map(|(k, r)| StartReport::new(k, multi, &r.outcome, r.polished, r.seconds)).collect();
     let mut run = runs.into_iter().nth(best).expect("at least one start");
-    name_in_units(&mut run.outcome, &mut problem, spec)?;
+    name_in_units(&mut run.outcome, &problem);
     let nv = spec.model.nv();
     let mut ctrl = vec![0.0; spec.n_ctrl * nv];
     let mut lambda_ctrl = vec![0.0; spec.n_ctrl * problem.layout.n_lambda];
@@ -60,20 +60,21 @@ pub fn plan_with_starts(
     })
 }
 
-/// The worst constraint at the nodes named with its value in physical units.
-fn name_in_units(outcome: &mut Outcome, problem: &mut Transcription, spec: &Spec) -> Result<()> {
-    let Some(worst) = &mut outcome.worst_constraint else { return Ok(()) };
-    let dims = problem.dims();
-    let mut eval = solve::Evaluation::new(dims, &problem.jacobian_patterns())
-        .map_err(|e| Error::task(&spec.origin, "transcription", e.to_string()))?;
-    if problem.evaluate(&outcome.x, false, &mut eval).is_ok() {
-        let raw = match worst.kind {
-            solve::ConstraintKind::Equality => eval.h[worst.index],
-            solve::ConstraintKind::Inequality => eval.g[worst.index],
-        };
-        worst.name = format!("{}: {}", worst.name, problem.violation_in_units(worst.kind, worst.index, raw));
+/// The worst constraint at the nodes named with its value in physical units. The outcome's scaled
+/// violation times the constraint's scale is its raw value (`|h|`, or `g⁺`: "holds" when it does), so
+/// nothing is evaluated again.
+fn name_in_units(outcome: &mut Outcome, problem: &Transcription) {
+    let Some(worst) = &mut outcome.worst_constraint else { return };
+    if !outcome.worst_violation.is_finite() {
+        return;
     }
-    Ok(())
+    let scales = problem.scales();
+    let scale = match worst.kind {
+        solve::ConstraintKind::Equality => scales.eq[worst.index],
+        solve::ConstraintKind::Inequality => scales.ineq[worst.index],
+    };
+    let raw = outcome.worst_violation * scale;
+    worst.name = format!("{}: {}", worst.name, problem.violation_in_units(worst.kind, worst.index, raw));
 }
 
 /// One start's result.
