@@ -369,3 +369,21 @@ fn a_warm_start_from_a_plan_directory_converges_at_once() {
     assert_eq!(code, 1, "{err}");
     assert!(err.contains("arm_lift_earth-1") && err.contains("--control-points 16"), "{err}");
 }
+
+/// A task's warnings (here radians in a degrees field) reach the user of `plan`, overrides or not.
+#[test]
+fn plan_prints_the_tasks_warnings() {
+    let dir = scratch("warnings");
+    let task = dir.join("radians.toml");
+    std::fs::write(&task, "[model]\nhuman = \"sagittal\"\n[motion]\nduration = 1.0\nstart = {}\ngoal = { shoulder = 1.57 }\n")
+        .unwrap();
+    for extra in [&[][..], &["--control-points", "9"][..]] {
+        let (_, _, err) = run(mintorque()
+            .args(["plan", "-q", "--no-plots", "--starts", "1"])
+            .args(extra)
+            .arg(&task)
+            .arg("--out")
+            .arg(dir.join("out")));
+        assert!(err.contains("warning: ") && err.contains("motion.goal") && err.contains("radians"), "{err}");
+    }
+}

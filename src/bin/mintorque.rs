@@ -6,8 +6,9 @@
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 use mintorque::dynamics::{batch::StatesFile, bench};
+use mintorque::plan::task::Overrides;
 use mintorque::plan::{self, task::Task, SolverKind};
-use mintorque::plan_dir::{self, overrides::Overrides, PlanContents, WriteOptions};
+use mintorque::plan_dir::{self, PlanContents, WriteOptions};
 use mintorque::report;
 use mintorque::spatial::Vec3;
 use std::io::IsTerminal;
@@ -219,7 +220,7 @@ fn run_plan(
     quiet: bool,
     no_plots: bool,
 ) -> Result<bool> {
-    let mut task = plan_dir::overrides::load_task(task_path, overrides)?;
+    let mut task = Task::load_with(task_path, overrides)?;
     if let Some(dir) = warm_start {
         plan_dir::warm_start(&mut task, dir)?;
     }
@@ -282,7 +283,7 @@ fn run_simulate(path: &Path, steps: u64) -> Result<bool> {
         let converged = loaded.record.converged;
         (task, x, format!("plan of {}{}", path.display(), if converged { "" } else { " (NOT converged)" }), converged)
     } else {
-        let mut task = plan_dir::overrides::load_task(path, &Overrides::default())?;
+        let mut task = Task::load(path)?;
         let planned = solve(&mut task, true)?;
         let status = if planned.converged() { "plan converged" } else { "plan NOT converged" };
         let converged = planned.converged();

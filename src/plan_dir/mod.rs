@@ -14,7 +14,6 @@ pub mod atomic;
 mod files;
 pub mod finite;
 pub mod manifest;
-pub mod overrides;
 mod warm;
 
 pub use atomic::{lock, Lock, WriteOptions};

@@ -6,7 +6,7 @@ use crate::check::{guarded, names_file, PARSE_BOUND, PLAN_BOUND};
 use crate::mutate::{apply, mutations};
 use crate::{run, seeds, shown};
 use mintorque::plan::{self, task::Task};
-use mintorque::plan_dir::{self, overrides, Manifest, PlanContents, WriteOptions};
+use mintorque::plan_dir::{self, Manifest, PlanContents, WriteOptions};
 use proptest::prelude::*;
 use proptest::sample::select;
 use std::collections::BTreeMap;
@@ -39,7 +39,7 @@ fn scratch(name: &str) -> PathBuf {
 /// Parses (and with `plan_it`, plans, writes and reads back) task `text` read as `path`.
 fn task_case(text: &str, path: &Path, plan_it: bool) -> Result<(), String> {
     let origin = shown(path);
-    let task = match Task::parse(text, path).and_then(|t| overrides::check_settings(&t).map(|()| t)) {
+    let task = match Task::parse(text, path) {
         Err(e) => return names_file(&e.to_string(), &origin),
         Ok(task) => task,
     };

@@ -8,12 +8,14 @@
 
 mod check;
 mod guess;
+mod overrides;
 mod resolve;
 pub mod schema;
 mod up;
 mod view;
 
 pub use check::{DURATION, MAX_CONTROL_POINTS, MAX_NODES_PER_SPAN};
+pub use overrides::Overrides;
 pub use resolve::{gravity_preset, resolve};
 pub use schema::*;
 pub use view::View;
@@ -52,8 +54,13 @@ pub struct Task {
 impl Task {
     /// Reads, resolves and validates a task file, printing its warnings on stderr.
     pub fn load(path: &Path) -> Result<Task> {
+        Task::load_with(path, &Overrides::default())
+    }
+
+    /// [`Task::load`] with command-line `overrides` applied.
+    pub fn load_with(path: &Path, overrides: &Overrides) -> Result<Task> {
         let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
-        let task = Task::parse(&text, path)?;
+        let task = Task::parse_with(&text, path, overrides)?;
         for w in &task.warnings {
             eprintln!("warning: {w}");
         }
@@ -62,9 +69,15 @@ impl Task {
 
     /// Parses task text; `path` locates the files it names and is quoted in errors.
     pub fn parse(text: &str, path: &Path) -> Result<Task> {
+        Task::parse_with(text, path, &Overrides::default())
+    }
+
+    /// [`Task::parse`] with `overrides` set in the file before anything is checked or resolved.
+    pub fn parse_with(text: &str, path: &Path, overrides: &Overrides) -> Result<Task> {
         let origin = path.display().to_string();
         let doc = Doc::parse(text, &origin, "task", Error::task)?;
-        let file: TaskFile = doc.read()?;
+        let mut file: TaskFile = doc.read()?;
+        overrides.apply(&mut file);
         check::numbers(&file, &origin)?;
         let filmstrip_view =
             file.output.filmstrip_view.parse::<View>().map_err(|m| Error::task(&origin, "output.filmstrip_view", m))?;
