@@ -91,13 +91,21 @@ struct LevenbergMarquardt {
     /// Marquardt parameter `ν` and its growth `β`.
     damping: f64,
     growth: f64,
-    /// The second-order term of the model, when used.
-    second_order: Option<SecondOrderTerm>,
-    /// Whether the problem provides the second-order term itself (`None` until asked).
-    exact: Option<bool>,
+    /// The second-order term of the model.
+    second_order: SecondOrder,
     /// Recompute the secant approximation by differences every this many iterations (0: never).
     refresh_every: usize,
     since_refresh: usize,
+}
+
+/// Where the model's second-order term comes from.
+enum SecondOrder {
+    /// Nowhere: Gauss–Newton.
+    None,
+    /// From the problem if it provides one (not asked yet, or it did last time).
+    Problem,
+    /// The partitioned secant approximation, built once the problem said it has no term.
+    Secant(Box<SecondOrderTerm>),
 }
 
 enum Step {
@@ -122,8 +130,7 @@ impl LevenbergMarquardt {
             x_trial: vec![0.0; n],
             damping: INITIAL_DAMPING,
             growth: 2.0,
-            second_order: second_order.then(|| SecondOrderTerm::new(eval)),
-            exact: None,
+            second_order: if second_order { SecondOrder::Problem } else { SecondOrder::None },
             refresh_every: SECANT_REFRESH,
             since_refresh: 0,
         }
@@ -137,17 +144,17 @@ impl LevenbergMarquardt {
         for (j, d) in self.scaling.iter_mut().enumerate() {
             *d = d.max(self.gram.diagonal(j));
         }
-        let Some(term) = &mut self.second_order else {
+        if matches!(self.second_order, SecondOrder::None) {
             return Ok(());
-        };
+        }
         al.gradient(&mut self.gradient_trial); // the row weights at x, which gauss_newton overwrote
-        if self.exact != Some(false) {
-            let provided = al.add_second_order(x, &mut self.gram);
-            self.exact = Some(provided);
-            if provided {
+        if matches!(self.second_order, SecondOrder::Problem) {
+            if al.add_second_order(x, &mut self.gram) {
                 return Ok(());
             }
+            self.second_order = SecondOrder::Secant(Box::new(SecondOrderTerm::new(&al.eval)));
         }
+        let SecondOrder::Secant(term) = &mut self.second_order else { unreachable!("set just above") };
         term.remember(x, &al.eval, al.gradient_weights());
         if self.refresh_every > 0 && self.since_refresh.is_multiple_of(self.refresh_every) {
             // A failed evaluation near x keeps the secant approximation.
@@ -229,7 +236,7 @@ impl LevenbergMarquardt {
             }
             let gain = actual / predicted;
             if gain > 0.0 && trial.is_finite() {
-                if let (Some(term), Some(false)) = (&mut self.second_order, self.exact) {
+                if let SecondOrder::Secant(term) = &mut self.second_order {
                     term.update(&self.x_trial, &al.eval, al.gradient_weights());
                 }
                 std::mem::swap(&mut self.gradient, &mut self.gradient_trial);
@@ -262,7 +269,7 @@ impl InnerSolver for LevenbergMarquardt {
         }
         // Levenberg–Marquardt restarts its damping with each multiplier update; with the second-order term
         // the model stays good across updates, and keeping ν saves 5–20 % of the iterations.
-        if self.second_order.is_none() {
+        if matches!(self.second_order, SecondOrder::None) {
             self.damping = INITIAL_DAMPING;
         }
         self.growth = 2.0;
