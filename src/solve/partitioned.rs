@@ -33,17 +33,8 @@
 use super::auglag::AugmentedLagrangian;
 use super::linalg::SymmetricMatrix;
 use super::line_search::EvalError;
-use super::problem::Evaluation;
-use super::sparse::SparseMatrix;
+use super::problem::{Evaluation, RowFamily};
 use std::collections::HashMap;
-
-/// Which Jacobian a row belongs to.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Family {
-    R,
-    H,
-    G,
-}
 
 /// Rows sharing one column set, and the dense approximation `Sₑ` over those columns.
 #[derive(Clone, Debug)]
@@ -51,7 +42,7 @@ struct Element {
     /// Global columns, ascending.
     cols: Vec<usize>,
     /// The element's rows.
-    rows: Vec<(Family, usize)>,
+    rows: Vec<(RowFamily, usize)>,
     /// For each row, the local index of each of its entries (in the row's storage order), concatenated.
     local: Vec<usize>,
     /// Row-major `m × m`, symmetric.
@@ -81,21 +72,13 @@ pub(crate) struct SecondOrderTerm {
     pub(crate) skipped: usize,
 }
 
-fn matrix(eval: &Evaluation, family: Family) -> &SparseMatrix {
-    match family {
-        Family::R => &eval.jr,
-        Family::H => &eval.jh,
-        Family::G => &eval.jg,
-    }
-}
-
 impl SecondOrderTerm {
     /// Groups the rows of `eval`'s Jacobians into elements by their column sets; all `Sₑ = 0`.
     pub(crate) fn new(eval: &Evaluation) -> Self {
         let mut by_columns: HashMap<Vec<usize>, usize> = HashMap::new();
         let mut elements: Vec<Element> = Vec::new();
-        for family in [Family::R, Family::H, Family::G] {
-            let m = matrix(eval, family);
+        for family in [RowFamily::Residual, RowFamily::Equality, RowFamily::Inequality] {
+            let m = eval.jacobian(family);
             for i in 0..m.nrows() {
                 let mut cols = m.row_cols(i).to_vec();
                 if cols.is_empty() {
@@ -271,7 +254,7 @@ fn weighted_difference(element: &Element, eval: &Evaluation, previous: &[Vec<f64
     out.fill(0.0);
     let mut at = 0;
     for &(family, i) in &element.rows {
-        let mat = matrix(eval, family);
+        let mat = eval.jacobian(family);
         let range = mat.row_range(i);
         let len = range.len();
         let w = weights[family as usize][i];

@@ -75,7 +75,8 @@ pub struct Scales {
     pub ineq: Vec<f64>,
 }
 
-/// The three kinds of rows of a problem.
+/// The three kinds of rows of a problem, in the order `r`, `h`, `g` (`family as usize` indexes arrays of
+/// three in that order).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RowFamily {
     /// A residual of the objective, `r`.
@@ -156,6 +157,15 @@ impl Evaluation {
         })
     }
 
+    /// The Jacobian of one kind of rows.
+    pub fn jacobian(&self, family: RowFamily) -> &SparseMatrix {
+        match family {
+            RowFamily::Residual => &self.jr,
+            RowFamily::Equality => &self.jh,
+            RowFamily::Inequality => &self.jg,
+        }
+    }
+
     /// `F = ½ ‖r‖²`.
     pub fn objective(&self) -> f64 {
         0.5 * self.r.iter().map(|v| v * v).sum::<f64>()
@@ -170,8 +180,8 @@ impl Evaluation {
             }
         }
         if with_jacobians {
-            let jacobians = [(RowFamily::Residual, &self.jr), (RowFamily::Equality, &self.jh), (RowFamily::Inequality, &self.jg)];
-            for (family, m) in jacobians {
+            for family in [RowFamily::Residual, RowFamily::Equality, RowFamily::Inequality] {
+                let m = self.jacobian(family);
                 for i in 0..m.nrows() {
                     if let Some(p) = m.row_values(i).iter().position(|x| !x.is_finite()) {
                         let (col, v) = (m.row_cols(i)[p], m.row_values(i)[p]);
