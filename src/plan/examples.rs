@@ -26,6 +26,8 @@ pub const ALL: &[Example] = &[
     Example { name: "dip_down_space", text: include_str!("../../examples/dip_down_space.toml") },
     Example { name: "double_pendulum", text: include_str!("../../examples/double_pendulum.toml") },
     Example { name: "leg_lift", text: include_str!("../../examples/leg_lift.toml") },
+    Example { name: "leg_lift_mars", text: include_str!("../../examples/leg_lift_mars.toml") },
+    Example { name: "leg_lift_space", text: include_str!("../../examples/leg_lift_space.toml") },
     Example { name: "pendulum", text: include_str!("../../examples/pendulum.toml") },
     Example { name: "push_up", text: include_str!("../../examples/push_up.toml") },
     Example { name: "two_arm_reach", text: include_str!("../../examples/two_arm_reach.toml") },
