@@ -4,3 +4,5 @@
 set -euo pipefail
 # tests/report.rs reads exported BVH files back with Python's `bvh` package.
 python3 -m pip install --quiet --disable-pip-version-check --root-user-action=ignore 'bvh==0.3'
+# tests/sweep.rs reads the sweep's Parquet table back with pyarrow.
+python3 -m pip install --quiet --disable-pip-version-check --root-user-action=ignore 'pyarrow==21.0.0'

@@ -76,6 +76,7 @@ pub mod plan_dir;
 pub mod report;
 pub mod solve;
 pub mod spatial;
+pub mod sweep;
 pub mod trajectory;
 
 pub use error::{Error, Result};

@@ -3,6 +3,11 @@
 //! converged plan), 1 bad input or settings (the message names the file, field or option), 3 a plan that
 //! did not converge or a result that is not finite.
 
+#[path = "mintorque/progress.rs"]
+mod progress;
+#[path = "mintorque/sweep.rs"]
+mod sweep;
+
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 use mintorque::dynamics::{batch::StatesFile, bench};
@@ -11,7 +16,6 @@ use mintorque::plan::{self, task::Task, SolverKind};
 use mintorque::plan_dir::{self, PlanContents, WriteOptions};
 use mintorque::report;
 use mintorque::spatial::Vec3;
-use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -52,6 +56,22 @@ enum Command {
         /// Skip the plots.
         #[arg(long)]
         no_plots: bool,
+    },
+    /// Plan a base task for every combination of the values of some of its fields (docs/sweeps.md), on all
+    /// cores, into a table: OUT/sweep.csv and sweep.parquet, one row per plan, and plots against each value.
+    /// Re-running resumes: the plans already in the table are skipped.
+    Sweep {
+        /// The sweep file (TOML): the base task and the fields to vary.
+        sweep: PathBuf,
+        /// Output directory (created if needed).
+        #[arg(long, short)]
+        out: PathBuf,
+        /// Also write every plan's directory under OUT/plans/INDEX/.
+        #[arg(long)]
+        keep_plans: bool,
+        /// No progress output.
+        #[arg(long, short)]
+        quiet: bool,
     },
     /// Export a planned motion (a directory written by `plan`) for other tools.
     Export {
@@ -174,34 +194,9 @@ fn load_model(path: &Path, read: ModelArgs) -> Result<mintorque::Model> {
     })
 }
 
-/// A progress observer: a spinner on a terminal, a line a second otherwise, nothing with `quiet`.
-fn progress(quiet: bool) -> (Option<indicatif::ProgressBar>, impl FnMut(&mintorque::solve::Progress)) {
-    let bar = (!quiet && std::io::stderr().is_terminal()).then(|| {
-        let b = indicatif::ProgressBar::new_spinner();
-        b.set_style(indicatif::ProgressStyle::with_template("{spinner} {elapsed} {msg}").expect("valid template"));
-        b
-    });
-    let shown = bar.clone();
-    let mut last_print = std::time::Instant::now();
-    let observer = move |p: &mintorque::solve::Progress| {
-        let msg = format!(
-            "iteration {:>4} (outer {:>2})  objective {:.6e}  violation {:.2e}  stationarity {:.2e}",
-            p.iteration, p.outer_iteration, p.objective, p.violation, p.stationarity
-        );
-        if let Some(b) = &shown {
-            b.set_message(msg);
-            b.tick();
-        } else if !quiet && last_print.elapsed().as_secs_f64() > 1.0 {
-            eprintln!("{msg}");
-            last_print = std::time::Instant::now();
-        }
-    };
-    (bar, observer)
-}
-
 /// Plans a task (overrides applied, settings checked), reporting why it did not converge if it did not.
 fn solve(task: &mut Task, quiet: bool) -> Result<plan::Plan> {
-    let (bar, mut observer) = progress(quiet);
+    let (bar, mut observer) = progress::spinner(quiet);
     let planned = task.plan(&mut observer)?;
     if let Some(b) = bar {
         b.finish_and_clear();
@@ -334,6 +329,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             let overrides = Overrides { solver, control_points, starts, refine };
             Ok(exit(run_plan(&task, &out, &overrides, warm_start.as_deref(), quiet, no_plots)?))
         }
+        Command::Sweep { sweep: file, out, keep_plans, quiet } => Ok(exit(sweep::run(&file, &out, keep_plans, quiet)?)),
         Command::Export { dir, format, out } => run_export(&dir, &format, out).map(|()| ExitCode::SUCCESS),
         Command::View { dir, filmstrip } => {
             let view = filmstrip

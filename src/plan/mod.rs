@@ -13,7 +13,7 @@ pub mod task;
 pub mod transcription;
 
 pub use guess::initial_x;
-pub use multistart::{MultiStart, StartReport};
+pub use multistart::{next_signed, MultiStart, StartReport};
 pub use refine::{last_change, plan_refined, Level, Refinement};
 pub use run::{plan, plan_with_starts};
 pub use spec::{Balance, Contact, ContactKind, InitialGuess, Objective, PointLoad, Spec};

@@ -83,7 +83,7 @@ fn start_seed(seed: u64, k: usize) -> u64 {
 }
 
 /// SplitMix64 (Steele, Lea & Flood 2014): a uniform number in `[-1, 1)`.
-fn next_signed(state: &mut u64) -> f64 {
+pub fn next_signed(state: &mut u64) -> f64 {
     *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
     let mut z = *state;
     z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);

@@ -126,7 +126,7 @@ fn check_guess(model: &Model, guess: &[SampleRecord]) -> Result<()> {
     }
 }
 
-fn drawing_error(e: impl std::fmt::Display) -> Error {
+pub(crate) fn drawing_error(e: impl std::fmt::Display) -> Error {
     Error::input("plots", "drawing", e.to_string())
 }
 
@@ -141,7 +141,7 @@ fn canvas_size((rows, columns): (usize, usize)) -> (u32, u32) {
 }
 
 /// `[lo, hi]` of `values` widened by 5 % (and to ±1 around a constant), for a y axis.
-fn padded_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
+pub(crate) fn padded_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     let (lo, hi) =
         values.filter(|v| v.is_finite()).fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)));
     if !lo.is_finite() {

@@ -1,0 +1,28 @@
+//! The progress of one plan on the terminal.
+
+use std::io::IsTerminal;
+
+/// A progress observer: a spinner on a terminal, a line a second otherwise, nothing with `quiet`.
+pub fn spinner(quiet: bool) -> (Option<indicatif::ProgressBar>, impl FnMut(&mintorque::solve::Progress)) {
+    let bar = (!quiet && std::io::stderr().is_terminal()).then(|| {
+        let b = indicatif::ProgressBar::new_spinner();
+        b.set_style(indicatif::ProgressStyle::with_template("{spinner} {elapsed} {msg}").expect("valid template"));
+        b
+    });
+    let shown = bar.clone();
+    let mut last_print = std::time::Instant::now();
+    let observer = move |p: &mintorque::solve::Progress| {
+        let msg = format!(
+            "iteration {:>4} (outer {:>2})  objective {:.6e}  violation {:.2e}  stationarity {:.2e}",
+            p.iteration, p.outer_iteration, p.objective, p.violation, p.stationarity
+        );
+        if let Some(b) = &shown {
+            b.set_message(msg);
+            b.tick();
+        } else if !quiet && last_print.elapsed().as_secs_f64() > 1.0 {
+            eprintln!("{msg}");
+            last_print = std::time::Instant::now();
+        }
+    };
+    (bar, observer)
+}
