@@ -71,4 +71,10 @@ def sweep(path: PathLike, out: PathLike, keep_plans: bool = False, warm_starts: 
     """Runs a sweep file into ``out`` and returns its table (a pandas DataFrame when pandas is installed,
     else a dict of columns)."""
 
-def sweep_table(path: PathLike, out: PathLike, keep_plans: bool = False, warm_starts: bool = True) -> str: ...
+def sweep_table(
+    path: PathLike, out: PathLike, keep_plans: bool = False, warm_starts: bool = True, share: Optional[Tuple[int, int]] = None
+) -> str:
+    """Runs a sweep (only the plans with an index in ``share``'s range, when given) and returns its CSV path."""
+
+def sweep_size(path: PathLike) -> int:
+    """The number of plans of a sweep file."""

@@ -28,6 +28,7 @@ fn _mintorque(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<planning::PlanResult>()?;
     m.add_function(wrap_pyfunction!(planning::plan, m)?)?;
     m.add_function(wrap_pyfunction!(planning::sweep_table, m)?)?;
+    m.add_function(wrap_pyfunction!(planning::sweep_size, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

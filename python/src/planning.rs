@@ -160,16 +160,30 @@ fn result(
     })
 }
 
-/// Runs the sweep file `path` into `out` (GIL released) and returns the path of its CSV table.
+/// Runs the sweep file `path` into `out` (GIL released) and returns the path of its CSV table; `share =
+/// (start, end)` plans only the plans with an index in `start..end` (a worker's share).
 #[pyfunction]
-#[pyo3(signature = (path, out, keep_plans = false, warm_starts = true))]
-pub fn sweep_table(py: Python<'_>, path: PathBuf, out: PathBuf, keep_plans: bool, warm_starts: bool) -> PyResult<PathBuf> {
+#[pyo3(signature = (path, out, keep_plans = false, warm_starts = true, share = None))]
+pub fn sweep_table(
+    py: Python<'_>,
+    path: PathBuf,
+    out: PathBuf,
+    keep_plans: bool,
+    warm_starts: bool,
+    share: Option<(usize, usize)>,
+) -> PyResult<PathBuf> {
     let report = py
         .detach(|| -> Result<_, mintorque::plan_dir::Error> {
             let sweep = mintorque::sweep::Sweep::load(Path::new(&path))?;
-            let options = mintorque::sweep::Options { keep_plans, warm_starts };
+            let options = mintorque::sweep::Options { keep_plans, warm_starts, share: share.map(|(a, b)| a..b) };
             mintorque::sweep::run(&sweep, &out, &options, &|_| {})
         })
         .map_err(error)?;
     Ok(report.csv)
+}
+
+/// The number of plans of the sweep file `path` (checked as `sweep` checks it).
+#[pyfunction]
+pub fn sweep_size(path: PathBuf) -> PyResult<usize> {
+    mintorque::sweep::Sweep::load(&path).map(|s| s.len()).map_err(error)
 }

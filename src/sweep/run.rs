@@ -23,11 +23,14 @@ pub struct Options {
     pub keep_plans: bool,
     /// Warm-start each plan from the nearest solved one (default true).
     pub warm_starts: bool,
+    /// Plan only the plans whose index is in this range (one worker's share of a sweep spread over a
+    /// cluster; default all).
+    pub share: Option<std::ops::Range<usize>>,
 }
 
 impl Default for Options {
     fn default() -> Self {
-        Options { keep_plans: false, warm_starts: true }
+        Options { keep_plans: false, warm_starts: true, share: None }
     }
 }
 
@@ -95,7 +98,8 @@ pub fn run(sweep: &Sweep, out: &Path, options: &Options, observer: &(dyn Fn(&Pro
     for r in earlier.iter().filter(|r| r.index < sweep.len()) {
         done[r.index] = true;
     }
-    let todo: Vec<usize> = (0..sweep.len()).filter(|i| !done[*i]).collect();
+    let share = options.share.clone().unwrap_or(0..sweep.len());
+    let todo: Vec<usize> = (0..sweep.len()).filter(|i| !done[*i] && share.contains(i)).collect();
     let writer = Mutex::new(table::Writer::open(&csv, &header)?);
     let solved = Mutex::new(VecDeque::<Solved>::new());
     let resumed = sweep.len() - todo.len();
