@@ -194,14 +194,20 @@ fn joint_panel<DB: DrawingBackend>(
     let planned = series(&record.samples);
     let guessed = guess.map(series).unwrap_or_default();
     let limit = (quantity == Quantity::Torque).then_some(joint.limits.effort).filter(|e| e.is_finite() && *e > 0.0);
-    let peak = planned.iter().chain(&guessed).map(|p| p.1.abs()).fold(0.0, f64::max);
+    // The plan sets the scale: an initial guess far off it (a kinematic guess can need ten times the torque)
+    // would flatten the plan into a line. Where the guess leaves the scale it is cut, and the caption says so.
+    let peak = planned.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
     let limit_on_scale = limit.filter(|&l| l <= LIMIT_ON_SCALE * peak.max(1e-9));
     let mut caption = format!("{} ({unit})", joint.name);
     if let (Some(l), None) = (limit, limit_on_scale) {
         caption.push_str(&format!(" — strength ±{l:.0} {unit}, off scale"));
     }
     let band_edges = limit_on_scale.map_or(vec![], |l| vec![-l, l]);
-    let y = padded_range(planned.iter().chain(&guessed).map(|p| p.1).chain(band_edges));
+    let y = padded_range(planned.iter().map(|p| p.1).chain(band_edges));
+    let (y, guess_cut) = guess_scale(y, &guessed);
+    if guess_cut {
+        caption.push_str(" — initial guess off scale");
+    }
     let x = time_range(record);
     let mut chart = ChartBuilder::on(panel)
         .caption(caption, ("sans-serif", 15))
@@ -224,8 +230,11 @@ fn joint_panel<DB: DrawingBackend>(
     }
     let line = chart.draw_series(LineSeries::new(planned, PLANNED.stroke_width(2))).map_err(drawing_error)?;
     line.label("planned").legend(|(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], PLANNED.stroke_width(2)));
-    if !guessed.is_empty() {
-        let dashed = chart.draw_series(DashedLineSeries::new(guessed, 6, 4, GUESS.stroke_width(2))).map_err(drawing_error)?;
+    for (k, run) in inside_runs(&guessed, y).into_iter().enumerate() {
+        let dashed = chart.draw_series(DashedLineSeries::new(run, 6, 4, GUESS.stroke_width(2))).map_err(drawing_error)?;
+        if k > 0 {
+            continue;
+        }
         dashed
             .label("initial guess")
             .legend(|(x, y)| DashedPathElement::new(vec![(x, y), (x + 22, y)], 5, 3, GUESS.stroke_width(2)));
@@ -241,6 +250,33 @@ fn joint_panel<DB: DrawingBackend>(
             .map_err(drawing_error)?;
     }
     Ok(())
+}
+
+/// The y range of a panel with the guess: the plan's range, widened to hold the guess when that takes at
+/// most twice the plan's span; otherwise the plan's range and `true` (the guess is cut at the edges).
+fn guess_scale(plan: (f64, f64), guess: &[(f64, f64)]) -> ((f64, f64), bool) {
+    let with_guess = padded_range(guess.iter().map(|p| p.1).chain([plan.0, plan.1]));
+    if guess.is_empty() || with_guess.1 - with_guess.0 <= 2.0 * (plan.1 - plan.0) {
+        (if guess.is_empty() { plan } else { with_guess }, false)
+    } else {
+        (plan, true)
+    }
+}
+
+/// The runs of consecutive points inside `[lo, hi]` (a line cut where it leaves the scale).
+fn inside_runs(points: &[(f64, f64)], (lo, hi): (f64, f64)) -> Vec<Vec<(f64, f64)>> {
+    let mut runs: Vec<Vec<(f64, f64)>> = vec![];
+    let mut open = false;
+    for &p in points {
+        let inside = p.1 >= lo && p.1 <= hi;
+        match (inside, open) {
+            (true, true) => runs.last_mut().expect("an open run").push(p),
+            (true, false) => runs.push(vec![p]),
+            _ => {}
+        }
+        open = inside;
+    }
+    runs
 }
 
 /// The band `|τ| ≤ limit` shaded, and its edges.
