@@ -182,11 +182,18 @@ impl Transcription<'_> {
     /// off (mm), a joint past its limit (° or mm), a torque over it (N·m or N), a contact force pulling or
     /// outside its cone (N), the balance moment outside the support (N·m).
     pub fn violation_in_units(&self, kind: ConstraintKind, index: usize, raw: f64) -> String {
+        if kind == ConstraintKind::Equality && index >= self.contact_nodes.t.len() * self.n_eq_node {
+            return format!("{}° (or mm) apart", num(raw.abs().to_degrees()));
+        }
         if kind == ConstraintKind::Equality {
             return format!("{} mm off its target", num(raw.abs() * 1e3));
         }
         if raw <= 0.0 {
             return "holds".into();
+        }
+        let node_rows = self.nodes.t.len() * self.ineq_rows.len();
+        if index >= node_rows {
+            return self.goal_violation(index - node_rows, raw);
         }
         let (_, row) = self.decode_ineq(index);
         let prismatic = |i: usize| self.spec.model.joints[i + 1].kind == crate::model::JointKind::Prismatic;

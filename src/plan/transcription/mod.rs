@@ -17,6 +17,7 @@
 //! only the four non-zero basis functions at each node.
 
 mod constraints;
+pub mod goals;
 mod hessian;
 mod objective;
 
@@ -50,11 +51,11 @@ pub struct Layout {
 
 impl Layout {
     /// The layout of `n_ctrl` control points of `nv` joints and `n_lambda` contact-force components; the
-    /// first and last (and, with `zero_end_velocity`, the second and second-to-last) joint control points are
-    /// fixed.
-    pub fn new(nv: usize, n_ctrl: usize, n_lambda: usize, zero_end_velocity: bool, lambda_scale: f64) -> Layout {
-        let fixed: Vec<bool> =
-            (0..n_ctrl).map(|j| j == 0 || j + 1 == n_ctrl || (zero_end_velocity && (j == 1 || j + 2 == n_ctrl))).collect();
+    /// first `head` and the last `tail` joint control points are fixed (by the end conditions:
+    /// [`EndCondition::tied`](super::spec::EndCondition::tied); `tail = 0` when a task-space goal frees the
+    /// goal posture).
+    pub fn new(nv: usize, n_ctrl: usize, n_lambda: usize, head: usize, tail: usize, lambda_scale: f64) -> Layout {
+        let fixed: Vec<bool> = (0..n_ctrl).map(|j| j < head || j + tail >= n_ctrl).collect();
         let mut block_start = Vec::with_capacity(n_ctrl);
         let mut n = 0;
         for &f in &fixed {
@@ -179,6 +180,7 @@ pub struct Transcription<'s> {
     lam_ctrl: Vec<f64>,
     work: NodeWork,
     hess: hessian::HessianWork,
+    goals: goals::Goals,
 }
 
 /// Per-node values and derivatives with respect to the node's `q`, `q̇`, `q̈` and `λ̃`.
@@ -265,18 +267,14 @@ impl<'s> Transcription<'s> {
         }
         let n_lambda = offset;
         let total_weight = model.total_mass() * spec.gravity.norm().max(9.81);
-        let layout = Layout::new(nv, spec.n_ctrl, n_lambda, spec.zero_end_velocity, total_weight);
+        let head = spec.start_condition.tied();
+        let tail = if spec.goal_is_free() { 0 } else { spec.goal_condition.tied() };
+        let layout = Layout::new(nv, spec.n_ctrl, n_lambda, head, tail, total_weight);
+        // The tied control points equal the end posture: c₀ (= c₁ (= c₂)) = q₀, likewise at the goal.
         let mut fixed_values = vec![0.0; spec.n_ctrl * nv];
-        for i in 0..nv {
-            let (qd0, qdt) = (0.0, 0.0);
-            let (head, tail) = spline.end_control_points(spec.start[i], qd0, spec.goal[i], qdt);
-            let n = spec.n_ctrl;
-            fixed_values[i] = head[0];
-            fixed_values[(n - 1) * nv + i] = tail[1];
-            if spec.zero_end_velocity {
-                fixed_values[nv + i] = head[1];
-                fixed_values[(n - 2) * nv + i] = tail[0];
-            }
+        for j in 0..spec.n_ctrl {
+            let end = if j < head { &spec.start } else { &spec.goal };
+            fixed_values[j * nv..(j + 1) * nv].copy_from_slice(end);
         }
         let (limits_low, limits_up): (Vec<f64>, Vec<f64>) = model.position_limits();
         let effort: Vec<f64> = model.joints[1..].iter().map(|j| j.limits.effort).collect();
@@ -340,6 +338,7 @@ impl<'s> Transcription<'s> {
             rda: vec![0.0; nv * nv],
             rdl: vec![0.0; nv * n_lambda],
         };
+        let goals = goals::Goals::new(spec, &spline);
         Transcription {
             n_eq_node: n_lambda,
             sqrt_weights: spec.weights.iter().map(|w| w.sqrt()).collect(),
@@ -361,6 +360,7 @@ impl<'s> Transcription<'s> {
             total_weight,
             work,
             hess: hessian::HessianWork::new(nv, n_lambda),
+            goals,
         }
     }
 
@@ -550,6 +550,11 @@ impl Transcription<'_> {
         self.ineq_rows.len()
     }
 
+    /// Loop-closure rows (the ties of a free goal posture follow them).
+    fn n_contact_eq(&self) -> usize {
+        self.contact_nodes.t.len() * self.n_eq_node
+    }
+
     /// Which node and which row within it an inequality index is.
     pub fn decode_ineq(&self, index: usize) -> (usize, IneqRow) {
         let per = self.n_ineq_node().max(1);
@@ -568,8 +573,8 @@ impl Problem for Transcription<'_> {
         Dims {
             n: self.layout.n,
             n_res: nn * self.layout.nv,
-            n_eq: self.contact_nodes.t.len() * self.n_eq_node,
-            n_ineq: nn * self.n_ineq_node(),
+            n_eq: self.n_contact_eq() + self.goals.ties.len(),
+            n_ineq: nn * self.n_ineq_node() + self.goals.n_rows(),
         }
     }
 
@@ -598,6 +603,9 @@ impl Problem for Transcription<'_> {
                 p.h.push(motion.clone());
             }
         }
+        let (g, h) = self.goal_patterns();
+        p.g.extend(g);
+        p.h.extend(h);
         p
     }
 
@@ -620,6 +628,8 @@ impl Problem for Transcription<'_> {
             }
             self.inequality_rows(k, want_jac, out);
         }
+        let (g0, h0) = (self.n_nodes() * self.n_ineq_node(), self.n_contact_eq());
+        self.goal_rows(g0, h0, want_jac, out);
         Ok(())
     }
 
@@ -651,9 +661,11 @@ impl Problem for Transcription<'_> {
                 IneqRow::Balance(_) => (0.1 * self.total_weight).max(1.0),
             })
             .collect();
+        // Contacts and goals in metres, ties in radians (or metres), goals' orientations as cosines.
+        let goals = std::iter::repeat_n(1.0, self.goals.n_rows());
         Scales {
-            eq: vec![1.0; self.contact_nodes.t.len() * self.n_eq_node],
-            ineq: (0..nn).flat_map(|_| per_node.iter().copied()).collect(),
+            eq: vec![1.0; self.n_contact_eq() + self.goals.ties.len()],
+            ineq: (0..nn).flat_map(|_| per_node.iter().copied()).chain(goals).collect(),
         }
     }
 
@@ -673,6 +685,19 @@ impl Problem for Transcription<'_> {
     fn constraint_name(&self, kind: ConstraintKind, index: usize) -> String {
         let joint = |i: usize| self.spec.model.joints[i + 1].name.clone();
         match kind {
+            ConstraintKind::Equality if index >= self.n_contact_eq() => {
+                let (m, i) = self.goals.ties[index - self.n_contact_eq()];
+                let n = self.layout.n_ctrl;
+                format!(
+                    "the goal's end condition: control point {} of joint \"{}\" equals control point {}",
+                    n - 1 - m,
+                    joint(i),
+                    n - 1
+                )
+            }
+            ConstraintKind::Inequality if index >= self.n_nodes() * self.n_ineq_node() => {
+                self.goal_row_name(index - self.n_nodes() * self.n_ineq_node())
+            }
             ConstraintKind::Equality => {
                 let per = self.n_eq_node.max(1);
                 let (k, m) = (index / per, index % per);
