@@ -102,11 +102,10 @@ impl Transcription<'_> {
                     out.g[gi] = if upper { w.q[i] - self.limits_up[i] } else { self.limits_low[i] - w.q[i] };
                     if want_jac {
                         let vals = out.jg.row_values_mut(gi);
-                        let mut pos = 0;
-                        for a in 0..4 {
-                            if !self.layout.fixed[basis.first + a] {
-                                vals[pos] = sign * basis.b[a];
-                                pos += 1;
+                        vals.fill(0.0);
+                        for (a, slot) in self.layout.motion_slots(basis.first).iter().enumerate() {
+                            if let Some(slot) = slot {
+                                vals[*slot] += sign * basis.b[a];
                             }
                         }
                     }
@@ -182,9 +181,6 @@ impl Transcription<'_> {
     /// off (mm), a joint past its limit (° or mm), a torque over it (N·m or N), a contact force pulling or
     /// outside its cone (N), the balance moment outside the support (N·m).
     pub fn violation_in_units(&self, kind: ConstraintKind, index: usize, raw: f64) -> String {
-        if kind == ConstraintKind::Equality && index >= self.contact_nodes.t.len() * self.n_eq_node {
-            return format!("{}° (or mm) apart", num(raw.abs().to_degrees()));
-        }
         if kind == ConstraintKind::Equality {
             return format!("{} mm off its target", num(raw.abs() * 1e3));
         }

@@ -3,16 +3,19 @@
 //! (`g ≤ 0`), functions of `q(t)` only:
 //!
 //! ```text
-//! position     g = (‖p(q) − p*‖² − δ²) / (2δ)                  ≈ ‖p − p*‖ − δ near the ball's surface (m)
+//! position     g = ±(p(q) − p*)ₐ − δ/√3,  a = x, y, z            (6 rows: a cube inside the ball ‖p − p*‖ ≤ δ, m)
 //! orientation  g = cos α − c(q),  c = (R a)·d  (an axis)  or  (tr(R*ᵀR) − 1)/2 = (Σ_c (R e_c)·(R* e_c) − 1)/2
 //! ```
 //!
-//! with `∂p/∂q_k` the point Jacobian and `∂(R a)/∂q_k = ω_k × R a`. With a goal at the end, the goal
-//! posture is an unknown: the last control points are free, and the goal's end condition ties them by
-//! linear equality rows after the contacts' (`c_{N−1−m} − c_{N−1} = 0`, m = 1 with `q̇(T) = 0`, m = 1, 2
-//! with hold). Rows rather than shared unknowns keep one unknown per joint and control point, so the chain
-//! rule, the patterns and the second-order term stay as they are; the rows are linear and exact at the
-//! solution the solver reports (they are counted in its violation like the contacts).
+//! A cube of rows nearly linear in `q`, not the one row `‖p − p*‖² ≤ δ²`: that row's curvature `1/δ`
+//! (200 /m at 5 mm) stalled the Gauss–Newton inner solves (5000 iterations on the shelf reach without
+//! converging); the cube's rows curve only as the kinematics do, like the contacts'.
+//! With `∂p/∂q_k` the point Jacobian and `∂(R a)/∂q_k = ω_k × R a`. With a goal at the end, the goal
+//! posture is an unknown: the last control points that the goal's end condition ties (`c_{N−2} = c_{N−1}`
+//! at rest, and `c_{N−3}` too holding) share one posture's unknowns ([`super::Layout::owner`]). Shared
+//! unknowns rather than equality rows `c_{N−2} − c_{N−1} = 0`: the end condition then holds exactly, as
+//! with a fixed goal, instead of to the solver's tolerance (and the rows, tried first, slowed the augmented
+//! Lagrangian's inner solves to a crawl on the shelf reach: 5000 iterations without converging).
 
 use super::{Derivatives, Transcription};
 use crate::dynamics::{kinematics, point_force::path_dofs, point_force::point_jacobian};
@@ -47,6 +50,14 @@ fn cosine_of_sum(n: usize, sum: f64) -> f64 {
     }
 }
 
+/// A goal's position rows; its orientation row (if any) follows them.
+const POSITION_ROWS: usize = 6;
+
+/// Half the side of the cube inside the ball of radius `delta`: `δ/√3`.
+fn half_side(delta: f64) -> f64 {
+    delta / 3f64.sqrt()
+}
+
 /// One goal as the transcription sees it.
 #[derive(Clone, Debug)]
 struct GoalInfo {
@@ -54,16 +65,14 @@ struct GoalInfo {
     basis: BasisAt,
     path: Vec<usize>,
     pairs: Vec<(Vec3, Vec3)>,
-    /// Its rows: 1 (position) or 2 (and orientation).
+    /// Its rows: 6 (position) or 7 (and orientation).
     n_rows: usize,
 }
 
-/// The goals' rows and the ties of a free goal posture, with their scratch.
+/// The goals' rows, with their scratch.
 #[derive(Clone, Debug)]
 pub(super) struct Goals {
     info: Vec<GoalInfo>,
-    /// `(m, i)`: the tie `c_{N−1−m, i} − c_{N−1, i} = 0`.
-    pub(super) ties: Vec<(usize, usize)>,
     grad: Vec<f64>,
     zeros: Vec<f64>,
     jac: Vec<Vec3>,
@@ -78,12 +87,10 @@ impl Goals {
             let t = g.t.unwrap_or(spec.duration).clamp(0.0, spec.duration);
             let basis = spline.grid(&[t]).map(|n| n.basis[0]).unwrap_or_else(|_| unreachable!("t is clamped into [0, T]"));
             let pairs = axis_pairs(&g.orientation);
-            let n_rows = if pairs.is_empty() { 1 } else { 2 };
+            let n_rows = if pairs.is_empty() { POSITION_ROWS } else { POSITION_ROWS + 1 };
             info.push(GoalInfo { basis, path: path_dofs(model, model.frames[g.frame].body), pairs, n_rows });
         }
-        let tied = if spec.goal_is_free() { spec.goal_condition.tied() } else { 1 };
-        let ties = (1..tied).flat_map(|m| (0..nv).map(move |i| (m, i))).collect();
-        Goals { info, ties, grad: vec![0.0; nv], zeros: vec![0.0; nv], jac: vec![Vec3::zeros(); nv] }
+        Goals { info, grad: vec![0.0; nv], zeros: vec![0.0; nv], jac: vec![Vec3::zeros(); nv] }
     }
 
     /// Inequality rows.
@@ -104,36 +111,25 @@ impl Goals {
 }
 
 impl Transcription<'_> {
-    /// Motion columns of each goal row, then the two columns of each tie.
-    pub(super) fn goal_patterns(&self) -> (Vec<Vec<usize>>, Vec<Vec<usize>>) {
+    /// Motion columns of each goal row.
+    pub(super) fn goal_patterns(&self) -> Vec<Vec<usize>> {
         let mut g = Vec::new();
         for info in &self.goals.info {
             let (motion, _) = self.node_columns(&info.basis);
             g.extend(std::iter::repeat_n(motion, info.n_rows));
         }
-        let last = self.layout.n_ctrl - 1;
-        let var = |j: usize, i: usize| self.layout.joint_var(j, i).expect("a free goal's control points are unknowns");
-        let h = self.goals.ties.iter().map(|&(m, i)| vec![var(last - m, i), var(last, i)]).collect();
-        (g, h)
+        g
     }
 
-    /// Goal rows into `out.g[g0..]`, ties into `out.h[h0..]`, with their Jacobians.
-    pub(super) fn goal_rows(&mut self, g0: usize, h0: usize, want_jac: bool, out: &mut Evaluation) {
-        let nv = self.layout.nv;
-        let last = self.layout.n_ctrl - 1;
-        for (r, &(m, i)) in self.goals.ties.iter().enumerate() {
-            // c_{N−1−m,i} − c_{N−1,i} = 0
-            out.h[h0 + r] = self.ctrl[(last - m) * nv + i] - self.ctrl[last * nv + i];
-            if want_jac {
-                out.jh.row_values_mut(h0 + r).copy_from_slice(&[1.0, -1.0]);
-            }
-        }
+    /// Goal rows into `out.g[g0..]`, with their Jacobians.
+    pub(super) fn goal_rows(&mut self, g0: usize, want_jac: bool, out: &mut Evaluation) {
         let mut row = g0;
         for g in 0..self.goals.info.len() {
             let basis = self.goals.info[g].basis;
             self.goal_state(&basis);
             for which in 0..self.goals.info[g].n_rows {
-                let weights = if which == 0 { [1.0, 0.0] } else { [0.0, 1.0] };
+                let mut weights = [0.0; POSITION_ROWS + 1];
+                weights[which] = 1.0;
                 let mut grad = std::mem::take(&mut self.goals.grad);
                 let values = self.goal_at(g, weights, &mut grad);
                 out.g[row] = values[which];
@@ -154,8 +150,9 @@ impl Transcription<'_> {
         basis.eval(&self.ctrl, self.layout.nv, &mut w.q, &mut w.qd, &mut w.qdd);
     }
 
-    /// Goal `g`'s row values `[position, orientation]` at `work.q`, and `Σ weightsᵢ ∂rowᵢ/∂q` into `out`.
-    fn goal_at(&mut self, g: usize, weights: [f64; 2], out: &mut [f64]) -> [f64; 2] {
+    /// Goal `g`'s row values (six position rows, then orientation) at `work.q`, and `Σ weightsᵢ ∂rowᵢ/∂q`
+    /// into `out`.
+    fn goal_at(&mut self, g: usize, weights: [f64; POSITION_ROWS + 1], out: &mut [f64]) -> [f64; POSITION_ROWS + 1] {
         let model = &self.spec.model;
         let goal = &self.spec.frame_goals[g];
         let info = &self.goals.info[g];
@@ -164,26 +161,31 @@ impl Transcription<'_> {
         let d = m.translation - goal.position;
         let delta = goal.tolerance;
         out.fill(0.0);
-        // g_p = (‖d‖² − δ²)/(2δ), ∂g_p/∂q_k = d·(∂p/∂q_k)/δ
-        let position = (d.norm_squared() - delta * delta) / (2.0 * delta);
+        let mut values = [0.0; POSITION_ROWS + 1];
         let jac = &mut self.goals.jac[..info.path.len()];
         point_jacobian(&self.data, &info.path, &m.translation, jac);
-        for (col, &k) in info.path.iter().enumerate() {
-            out[k] += weights[0] * d.dot(&jac[col]) / delta;
+        for r in 0..POSITION_ROWS {
+            // g = ±dₐ − δ/√3, ∂g/∂q_k = ±(∂p/∂q_k)ₐ
+            let (a, sign) = (r / 2, if r % 2 == 0 { 1.0 } else { -1.0 });
+            values[r] = sign * d[a] - half_side(delta);
+            for (col, &k) in info.path.iter().enumerate() {
+                out[k] += weights[r] * sign * jac[col][a];
+            }
         }
         // g_o = cos α − c(Σ (R a)·d), ∂g_o/∂q_k = −c′ Σ (ω_k × R a)·d
         let sum: f64 = info.pairs.iter().map(|(a, dir)| (m.rotation * a).dot(dir)).sum();
-        let orientation = goal.angle_tolerance.cos() - cosine_of_sum(info.pairs.len(), sum);
+        values[POSITION_ROWS] = goal.angle_tolerance.cos() - cosine_of_sum(info.pairs.len(), sum);
         let slope = if info.pairs.len() == 3 { 0.5 } else { 1.0 };
-        if weights[1] != 0.0 {
+        let w_o = weights[POSITION_ROWS];
+        if w_o != 0.0 {
             for (a, dir) in &info.pairs {
                 let v = m.rotation * a;
                 for &k in &info.path {
-                    out[k] -= weights[1] * slope * self.data.S[k + 1].w.cross(&v).dot(dir);
+                    out[k] -= w_o * slope * self.data.S[k + 1].w.cross(&v).dot(dir);
                 }
             }
         }
-        [position, orientation]
+        values
     }
 
     /// `target += Σ w ∇²g` of the goal rows (weights `w_g[g0..]`): the `q` block by differences of the
@@ -193,9 +195,10 @@ impl Transcription<'_> {
         for g in 0..self.goals.info.len() {
             let info = &self.goals.info[g];
             let (basis, n_rows) = (info.basis, info.n_rows);
-            let weights = [w_g[row], if n_rows == 2 { w_g[row + 1] } else { 0.0 }];
+            let mut weights = [0.0; POSITION_ROWS + 1];
+            weights[..n_rows].copy_from_slice(&w_g[row..row + n_rows]);
             row += n_rows;
-            if weights == [0.0, 0.0] {
+            if weights.iter().all(|w| *w == 0.0) {
                 continue;
             }
             self.goal_state(&basis);
@@ -212,10 +215,18 @@ impl Transcription<'_> {
         let goal = &self.spec.frame_goals[g];
         let frame = &self.spec.model.frames[goal.frame].name;
         let when = goal.t.map_or("the end".to_string(), |t| format!("t = {t:.3} s"));
-        if which == 0 {
+        if which < POSITION_ROWS {
             let p = goal.position;
             let tol = goal.tolerance * 1e3;
-            format!("{} (frame \"{frame}\" within {tol:.1} mm of ({:.4}, {:.4}, {:.4}) m) at {when}", goal.name, p.x, p.y, p.z)
+            let axis = ["x", "y", "z"][which / 2];
+            format!(
+                "{} (frame \"{frame}\" within {tol:.1} mm of ({:.4}, {:.4}, {:.4}) m: its {axis} within ±{:.2} mm) at {when}",
+                goal.name,
+                p.x,
+                p.y,
+                p.z,
+                half_side(goal.tolerance) * 1e3
+            )
         } else {
             let tol = goal.angle_tolerance.to_degrees();
             format!("{} (orientation of frame \"{frame}\" within {tol:.1}°) at {when}", goal.name)
@@ -226,11 +237,10 @@ impl Transcription<'_> {
     pub(super) fn goal_violation(&self, r: usize, raw: f64) -> String {
         let (g, which) = self.goals.decode(r);
         let goal = &self.spec.frame_goals[g];
-        if which == 0 {
-            // raw = (‖d‖² − δ²)/(2δ)  ⇒  ‖d‖ = √(δ² + 2δ·raw)
-            let delta = goal.tolerance;
-            let distance = (delta * delta + 2.0 * delta * raw).max(0.0).sqrt();
-            format!("{:.3} mm from its target, {:.3} mm beyond its tolerance", distance * 1e3, (distance - delta) * 1e3)
+        if which < POSITION_ROWS {
+            let axis = ["x", "y", "z"][which / 2];
+            let half = half_side(goal.tolerance);
+            format!("{:.3} mm off along {axis}, {:.3} mm beyond its ±{:.3} mm", (raw + half) * 1e3, raw * 1e3, half * 1e3)
         } else {
             let angle = (goal.angle_tolerance.cos() - raw).clamp(-1.0, 1.0).acos();
             format!("{:.3}° off, {:.3}° beyond its tolerance", angle.to_degrees(), (angle - goal.angle_tolerance).to_degrees())

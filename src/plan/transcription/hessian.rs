@@ -275,7 +275,11 @@ impl Transcription<'_> {
             for i in 0..nv {
                 if let Some(col) = self.layout.joint_var(j, i) {
                     let coef = [(i, basis.b[a]), (nv + i, basis.db[a]), (2 * nv + i, basis.ddb[a])];
-                    h.local.push((col, coef, blocks));
+                    // A control point sharing its owner's unknowns adds its basis functions to the owner's.
+                    match h.local.iter_mut().find(|(c, ..)| *c == col) {
+                        Some((_, owner, _)) => owner.iter_mut().zip(coef).for_each(|(o, c)| o.1 += c.1),
+                        None => h.local.push((col, coef, blocks)),
+                    }
                 }
             }
             if blocks == 3 {

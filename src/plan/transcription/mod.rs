@@ -40,6 +40,10 @@ pub struct Layout {
     pub n_lambda: usize,
     /// Control points whose joint values are fixed by the boundary conditions.
     pub fixed: Vec<bool>,
+    /// The control point whose unknowns each control point's joint values are: itself, or — for the last
+    /// control points of a goal posture left to the planner, tied by the goal's end condition — the first of
+    /// them (`c_{N−2} = c_{N−1}` at rest, `c_{N−3} = c_{N−2} = c_{N−1}` holding: one unknown posture).
+    pub owner: Vec<usize>,
     /// Index in `x` of each control point's first unknown.
     pub block_start: Vec<usize>,
     /// Number of unknowns.
@@ -52,27 +56,52 @@ pub struct Layout {
 impl Layout {
     /// The layout of `n_ctrl` control points of `nv` joints and `n_lambda` contact-force components; the
     /// first `head` and the last `tail` joint control points are fixed (by the end conditions:
-    /// [`EndCondition::tied`](super::spec::EndCondition::tied); `tail = 0` when a task-space goal frees the
-    /// goal posture).
-    pub fn new(nv: usize, n_ctrl: usize, n_lambda: usize, head: usize, tail: usize, lambda_scale: f64) -> Layout {
+    /// [`EndCondition::tied`](super::spec::EndCondition::tied)), and the last `shared` share one posture's
+    /// unknowns (a task-space goal: `tail = 0`, `shared` the goal's `tied`).
+    pub fn new(nv: usize, n_ctrl: usize, n_lambda: usize, [head, tail]: [usize; 2], shared: usize, lambda_scale: f64) -> Layout {
         let fixed: Vec<bool> = (0..n_ctrl).map(|j| j < head || j + tail >= n_ctrl).collect();
+        let first_shared = n_ctrl - shared.max(1);
+        let owner: Vec<usize> = (0..n_ctrl).map(|j| j.min(first_shared)).collect();
         let mut block_start = Vec::with_capacity(n_ctrl);
         let mut n = 0;
-        for &f in &fixed {
+        for j in 0..n_ctrl {
             block_start.push(n);
-            n += if f { 0 } else { nv } + n_lambda;
+            n += if !fixed[j] && owner[j] == j { nv } else { 0 } + n_lambda;
         }
-        Layout { nv, n_ctrl, n_lambda, fixed, block_start, n, lambda_scale }
+        Layout { nv, n_ctrl, n_lambda, fixed, owner, block_start, n, lambda_scale }
+    }
+
+    /// Whether control point `j` holds joint unknowns of its own (neither fixed nor sharing another's).
+    pub fn owns(&self, j: usize) -> bool {
+        !self.fixed[j] && self.owner[j] == j
     }
 
     /// Index in `x` of joint `i` at control point `j`, `None` when it is fixed.
     pub fn joint_var(&self, j: usize, i: usize) -> Option<usize> {
-        (!self.fixed[j]).then(|| self.block_start[j] + i)
+        let o = self.owner[j];
+        (!self.fixed[o]).then(|| self.block_start[o] + i)
+    }
+
+    /// For the node whose four basis functions start at control point `first`: which block of `nv` motion
+    /// columns each of the four control points' unknowns are (its owner's for a shared one), `None` if fixed.
+    pub fn motion_slots(&self, first: usize) -> [Option<usize>; 4] {
+        let mut slots = [None; 4];
+        let mut next = 0;
+        for a in 0..4 {
+            let j = first + a;
+            if self.owns(j) {
+                slots[a] = Some(next);
+                next += 1;
+            } else if !self.fixed[j] {
+                slots[a] = slots[self.owner[j] - first]; // the owner precedes it in the same window
+            }
+        }
+        slots
     }
 
     /// Index in `x` of contact-force component `m` at control point `j`.
     pub fn lambda_var(&self, j: usize, m: usize) -> usize {
-        self.block_start[j] + if self.fixed[j] { 0 } else { self.nv } + m
+        self.block_start[j] + if self.owns(j) { self.nv } else { 0 } + m
     }
 
     /// Splits `x` into joint control points (`n_ctrl × nv`, fixed ones taken from `fixed_values`) and
@@ -268,8 +297,8 @@ impl<'s> Transcription<'s> {
         let n_lambda = offset;
         let total_weight = model.total_mass() * spec.gravity.norm().max(9.81);
         let head = spec.start_condition.tied();
-        let tail = if spec.goal_is_free() { 0 } else { spec.goal_condition.tied() };
-        let layout = Layout::new(nv, spec.n_ctrl, n_lambda, head, tail, total_weight);
+        let (tail, shared) = if spec.goal_is_free() { (0, spec.goal_condition.tied()) } else { (spec.goal_condition.tied(), 0) };
+        let layout = Layout::new(nv, spec.n_ctrl, n_lambda, [head, tail], shared, total_weight);
         // The tied control points equal the end posture: c₀ (= c₁ (= c₂)) = q₀, likewise at the goal.
         let mut fixed_values = vec![0.0; spec.n_ctrl * nv];
         for j in 0..spec.n_ctrl {
@@ -380,7 +409,9 @@ impl<'s> Transcription<'s> {
         let mut motion = Vec::new();
         let mut lambda = Vec::new();
         for j in basis.first..basis.first + 4 {
-            motion.extend((0..l.nv).filter_map(|i| l.joint_var(j, i)));
+            if l.owns(j) {
+                motion.extend((0..l.nv).filter_map(|i| l.joint_var(j, i)));
+            }
             lambda.extend((0..l.n_lambda).map(|m| l.lambda_var(j, m)));
         }
         (motion, lambda)
@@ -512,15 +543,15 @@ impl<'s> Transcription<'s> {
     /// node's `q`, `q̇`, `q̈` (each `nv`) and `λ̃` (`n_lambda`), by the chain rule of eq. 33, scaled by `s`.
     fn chain_rule(layout: &Layout, basis: &BasisAt, s: f64, d: Derivatives, out: &mut [f64]) {
         let Derivatives { q: d_q, v: d_v, a: d_a, lambda: d_l } = d;
-        let mut pos = 0;
-        for a in 0..4 {
-            if layout.fixed[basis.first + a] {
-                continue;
-            }
+        let slots = layout.motion_slots(basis.first);
+        let nv = layout.nv;
+        let mut pos = slots.iter().flatten().max().map_or(0, |s| (s + 1) * nv);
+        out[..pos].fill(0.0);
+        for (a, slot) in slots.iter().enumerate() {
+            let Some(slot) = slot else { continue };
             let (b, db, ddb) = (basis.b[a] * s, basis.db[a] * s, basis.ddb[a] * s);
-            for i in 0..layout.nv {
-                out[pos] = d_q[i] * b + d_v[i] * db + d_a[i] * ddb;
-                pos += 1;
+            for i in 0..nv {
+                out[slot * nv + i] += d_q[i] * b + d_v[i] * db + d_a[i] * ddb;
             }
         }
         if let Some(d_l) = d_l {
@@ -550,7 +581,7 @@ impl Transcription<'_> {
         self.ineq_rows.len()
     }
 
-    /// Loop-closure rows (the ties of a free goal posture follow them).
+    /// Loop-closure rows.
     fn n_contact_eq(&self) -> usize {
         self.contact_nodes.t.len() * self.n_eq_node
     }
@@ -573,7 +604,7 @@ impl Problem for Transcription<'_> {
         Dims {
             n: self.layout.n,
             n_res: nn * self.layout.nv,
-            n_eq: self.n_contact_eq() + self.goals.ties.len(),
+            n_eq: self.n_contact_eq(),
             n_ineq: nn * self.n_ineq_node() + self.goals.n_rows(),
         }
     }
@@ -590,7 +621,7 @@ impl Problem for Transcription<'_> {
             for row in &self.ineq_rows {
                 p.g.push(match *row {
                     IneqRow::UpperPosition(i) | IneqRow::LowerPosition(i) => {
-                        (basis.first..basis.first + 4).filter_map(|j| self.layout.joint_var(j, i)).collect()
+                        (basis.first..basis.first + 4).filter(|&j| self.layout.owns(j)).filter_map(|j| self.layout.joint_var(j, i)).collect()
                     }
                     IneqRow::UpperTorque(_) | IneqRow::LowerTorque(_) | IneqRow::Balance(_) => both.clone(),
                     IneqRow::Push(c) | IneqRow::Friction(c, _) => self.contact_columns(basis, c),
@@ -603,9 +634,7 @@ impl Problem for Transcription<'_> {
                 p.h.push(motion.clone());
             }
         }
-        let (g, h) = self.goal_patterns();
-        p.g.extend(g);
-        p.h.extend(h);
+        p.g.extend(self.goal_patterns());
         p
     }
 
@@ -628,8 +657,7 @@ impl Problem for Transcription<'_> {
             }
             self.inequality_rows(k, want_jac, out);
         }
-        let (g0, h0) = (self.n_nodes() * self.n_ineq_node(), self.n_contact_eq());
-        self.goal_rows(g0, h0, want_jac, out);
+        self.goal_rows(self.n_nodes() * self.n_ineq_node(), want_jac, out);
         Ok(())
     }
 
@@ -661,10 +689,10 @@ impl Problem for Transcription<'_> {
                 IneqRow::Balance(_) => (0.1 * self.total_weight).max(1.0),
             })
             .collect();
-        // Contacts and goals in metres, ties in radians (or metres), goals' orientations as cosines.
+        // Goals in metres (like the contacts), their orientations as cosines.
         let goals = std::iter::repeat_n(1.0, self.goals.n_rows());
         Scales {
-            eq: vec![1.0; self.n_contact_eq() + self.goals.ties.len()],
+            eq: vec![1.0; self.n_contact_eq()],
             ineq: (0..nn).flat_map(|_| per_node.iter().copied()).chain(goals).collect(),
         }
     }
@@ -685,16 +713,6 @@ impl Problem for Transcription<'_> {
     fn constraint_name(&self, kind: ConstraintKind, index: usize) -> String {
         let joint = |i: usize| self.spec.model.joints[i + 1].name.clone();
         match kind {
-            ConstraintKind::Equality if index >= self.n_contact_eq() => {
-                let (m, i) = self.goals.ties[index - self.n_contact_eq()];
-                let n = self.layout.n_ctrl;
-                format!(
-                    "the goal's end condition: control point {} of joint \"{}\" equals control point {}",
-                    n - 1 - m,
-                    joint(i),
-                    n - 1
-                )
-            }
             ConstraintKind::Inequality if index >= self.n_nodes() * self.n_ineq_node() => {
                 self.goal_row_name(index - self.n_nodes() * self.n_ineq_node())
             }
