@@ -620,9 +620,10 @@ impl Problem for Transcription<'_> {
             }
             for row in &self.ineq_rows {
                 p.g.push(match *row {
-                    IneqRow::UpperPosition(i) | IneqRow::LowerPosition(i) => {
-                        (basis.first..basis.first + 4).filter(|&j| self.layout.owns(j)).filter_map(|j| self.layout.joint_var(j, i)).collect()
-                    }
+                    IneqRow::UpperPosition(i) | IneqRow::LowerPosition(i) => (basis.first..basis.first + 4)
+                        .filter(|&j| self.layout.owns(j))
+                        .filter_map(|j| self.layout.joint_var(j, i))
+                        .collect(),
                     IneqRow::UpperTorque(_) | IneqRow::LowerTorque(_) | IneqRow::Balance(_) => both.clone(),
                     IneqRow::Push(c) | IneqRow::Friction(c, _) => self.contact_columns(basis, c),
                 });
@@ -691,10 +692,7 @@ impl Problem for Transcription<'_> {
             .collect();
         // Goals in metres (like the contacts), their orientations as cosines.
         let goals = std::iter::repeat_n(1.0, self.goals.n_rows());
-        Scales {
-            eq: vec![1.0; self.n_contact_eq()],
-            ineq: (0..nn).flat_map(|_| per_node.iter().copied()).chain(goals).collect(),
-        }
+        Scales { eq: vec![1.0; self.n_contact_eq()], ineq: (0..nn).flat_map(|_| per_node.iter().copied()).chain(goals).collect() }
     }
 
     fn row_name(&self, family: RowFamily, index: usize) -> String {
