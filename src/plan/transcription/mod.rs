@@ -10,8 +10,9 @@
 //! ```
 //!
 //! Unknowns `x`, control-point-major so that every Jacobian is banded: for control point `j`, the values
-//! of the free joints (none for the four end control points when the end velocities are fixed: `c₀ = c₁ =
-//! q₀`, `c_{N−2} = c_{N−1} = q_T` make `q(0), q̇(0), q(T), q̇(T)` exact), then the control points of the
+//! of the free joints (none for the end control points the end conditions fix: at rest `c₀ = c₁ = q₀`,
+//! `c_{N−2} = c_{N−1} = q_T` make `q(0), q̇(0), q(T), q̇(T)` exact, holding `c₂`, `c_{N−3}` too; with a
+//! task-space goal at the end the tied last ones share one unknown posture, `Layout::owner`), then the control points of the
 //! contact forces `λ(t)` (cubic B-splines on the same knots, so the loads on the hands are smooth and
 //! defined at every time). Gradients follow eq. 33 from the engine's `∂τ/∂q`, `∂τ/∂q̇` and `H`, touching
 //! only the four non-zero basis functions at each node.
