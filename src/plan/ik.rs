@@ -86,18 +86,7 @@ pub fn close_loop(model: &Model, contacts: &[Contact], q: &[f64], free: &[usize]
     let n_rows: usize = contacts.iter().map(|c| c.directions().len()).sum();
     let rows = |model: &Model, data: &Data, phi: &mut DVector<f64>, jac: &mut DMatrix<f64>| {
         jac.fill(0.0);
-        let mut row = 0;
-        for c in contacts {
-            let (p, path, jp) = frame_point(model, data, c.frame);
-            for e in c.directions() {
-                // Φ = eᵀ(p − target), ∂Φ/∂q_k = eᵀ ∂p/∂q_k
-                phi[row] = e.dot(&(p - c.target));
-                for (col, &dof) in path.iter().enumerate() {
-                    jac[(row, dof)] = e.dot(&jp[col]);
-                }
-                row += 1;
-            }
-        }
+        contact_rows(model, data, contacts, phi, jac);
     };
     let settings = Settings { damping: 0.0, limits: None, tolerance: 1e-9 };
     let (q, residual) = solve(model, q, free, n_rows, &rows, &settings);
@@ -106,6 +95,23 @@ pub fn close_loop(model: &Model, contacts: &[Contact], q: &[f64], free: &[usize]
     } else {
         Err(format!("the contacts cannot be closed by moving the listed joints: {:.1} mm remain", residual * 1e3))
     }
+}
+
+/// The loop closures `Φ = Eᵀ(p − target)` into the first rows of `phi`, `jac`; returns how many.
+fn contact_rows(model: &Model, data: &Data, contacts: &[Contact], phi: &mut DVector<f64>, jac: &mut DMatrix<f64>) -> usize {
+    let mut row = 0;
+    for c in contacts {
+        let (p, path, jp) = frame_point(model, data, c.frame);
+        for e in c.directions() {
+            // Φ = eᵀ(p − target), ∂Φ/∂q_k = eᵀ ∂p/∂q_k
+            phi[row] = e.dot(&(p - c.target));
+            for (col, &dof) in path.iter().enumerate() {
+                jac[(row, dof)] = e.dot(&jp[col]);
+            }
+            row += 1;
+        }
+    }
+    row
 }
 
 /// A frame's origin, the dofs on its path and its point Jacobian along them.
@@ -127,14 +133,16 @@ pub fn goal_miss(model: &Model, data: &mut Data, goal: &FrameGoal, q: &[f64]) ->
 }
 
 /// Inverse kinematics for the goals (all at one time): damped least squares from `q` over every joint,
-/// within the limits `(low, up)`, on the rows `p − p*` (m) and, for an orientation, `R a − d` per axis.
-/// Returns the posture reached (each goal's miss is then [`goal_miss`]).
-pub fn reach(model: &Model, goals: &[&FrameGoal], q: &[f64], limits: Option<(&[f64], &[f64])>) -> Vec<f64> {
+/// within the limits `(low, up)`, on the rows `p − p*` (m) and, for an orientation, `R a − d` per axis —
+/// and the `contacts`' closures, which the posture must keep too. Returns the posture reached (each goal's
+/// miss is then [`goal_miss`]).
+pub fn reach(model: &Model, goals: &[&FrameGoal], contacts: &[Contact], q: &[f64], limits: Option<(&[f64], &[f64])>) -> Vec<f64> {
     use super::transcription::goals::axis_pairs;
-    let n_rows: usize = goals.iter().map(|g| 3 + 3 * axis_pairs(&g.orientation).len()).sum();
+    let closures: usize = contacts.iter().map(|c| c.directions().len()).sum();
+    let n_rows: usize = closures + goals.iter().map(|g| 3 + 3 * axis_pairs(&g.orientation).len()).sum::<usize>();
     let rows = |model: &Model, data: &Data, r: &mut DVector<f64>, jac: &mut DMatrix<f64>| {
         jac.fill(0.0);
-        let mut row = 0;
+        let mut row = contact_rows(model, data, contacts, r, jac);
         for g in goals {
             let (p, path, jp) = frame_point(model, data, g.frame);
             let rotation = kinematics::frame_placement(model, data, g.frame).rotation;

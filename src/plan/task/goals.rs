@@ -102,15 +102,15 @@ fn frame_goal(model: &Model, g: &FrameGoalSpec, duration: f64, field: &str, orig
 
 /// Inverse kinematics for the initial guess: the goal posture reaching the goals at the end (from
 /// `spec.goal`, the given goal or the start), then a via posture for each time with goals (from the
-/// straight line between start and goal there). A goal out of reach within the joint limits is an error
-/// saying by how much.
+/// straight line between start and goal there), keeping the contacts closed. A goal out of reach within
+/// the joint limits is an error saying by how much.
 pub(super) fn goal_postures(spec: &mut Spec, origin: &str) -> Result<()> {
     let model = &spec.model;
     let limits = model.position_limits();
     let limits = spec.position_limits.then_some((limits.0.as_slice(), limits.1.as_slice()));
     let at_end: Vec<&FrameGoal> = spec.frame_goals.iter().filter(|g| g.t.is_none()).collect();
     if !at_end.is_empty() {
-        spec.goal = reached(model, &at_end, &spec.goal, limits, origin)?;
+        spec.goal = reached(model, (&at_end, &spec.contacts), &spec.goal, limits, origin)?;
     }
     let mut times: Vec<f64> = spec.frame_goals.iter().filter_map(|g| g.t).collect();
     times.sort_by(f64::total_cmp);
@@ -120,7 +120,7 @@ pub(super) fn goal_postures(spec: &mut Spec, origin: &str) -> Result<()> {
         let goals: Vec<&FrameGoal> = spec.frame_goals.iter().filter(|g| g.t == Some(t)).collect();
         let s = t / spec.duration;
         let line: Vec<f64> = spec.start.iter().zip(&spec.goal).map(|(a, b)| a + (b - a) * s).collect();
-        vias.push((t, reached(model, &goals, &line, limits, origin)?));
+        vias.push((t, reached(model, (&goals, &spec.contacts), &line, limits, origin)?));
     }
     if !vias.is_empty() {
         spec.initial_guess = match std::mem::replace(&mut spec.initial_guess, InitialGuess::Linear) {
@@ -137,8 +137,14 @@ pub(super) fn goal_postures(spec: &mut Spec, origin: &str) -> Result<()> {
 }
 
 /// The posture [`ik::reach`] finds for `goals` from `q`; an error naming the goal it misses worst.
-fn reached(model: &Model, goals: &[&FrameGoal], q: &[f64], limits: Option<(&[f64], &[f64])>, origin: &str) -> Result<Vec<f64>> {
-    let q = ik::reach(model, goals, q, limits);
+fn reached(
+    model: &Model,
+    (goals, contacts): (&[&FrameGoal], &[crate::plan::Contact]),
+    q: &[f64],
+    limits: Option<(&[f64], &[f64])>,
+    origin: &str,
+) -> Result<Vec<f64>> {
+    let q = ik::reach(model, goals, contacts, q, limits);
     let mut data = crate::dynamics::Data::new(model);
     let within = if limits.is_some() { " within the joint limits" } else { "" };
     for g in goals {
