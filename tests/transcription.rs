@@ -5,7 +5,7 @@ mod common;
 
 use common::{random_tree, Rng};
 use mintorque::model::{Frame, JointLimits, Passive};
-use mintorque::plan::{Balance, Contact, ContactKind, PointLoad, Spec, Transcription};
+use mintorque::plan::{Balance, Contact, ContactKind, EndCondition, FrameGoal, Orientation, PointLoad, Spec, Transcription};
 use mintorque::solve::{Evaluation, Problem};
 use mintorque::spatial::{Transform, Vec3};
 
@@ -34,7 +34,8 @@ fn random_spec(seed: u64, n: usize, zero_end_velocity: bool) -> Spec {
     let mut spec = Spec::new(model, start, goal, 1.3);
     spec.n_ctrl = 7;
     spec.nodes_per_span = 3;
-    spec.zero_end_velocity = zero_end_velocity;
+    let condition = if zero_end_velocity { EndCondition::Rest } else { EndCondition::Free };
+    (spec.start_condition, spec.goal_condition) = (condition, condition);
     spec.weights = rng.vec(n, 0.5, 2.0);
     spec.position_limits = true;
     spec.torque_limits = true;
@@ -70,10 +71,56 @@ fn random_spec(seed: u64, n: usize, zero_end_velocity: bool) -> Spec {
     spec
 }
 
+/// `random_spec` with task-space goals: the hand at a point with a whole rotation at the end (so the goal
+/// posture is free, its last three control points shared by `hold`), and the grip at a point with an axis
+/// direction at a via time; with `hold = false` the goal is at rest (two shared), the start free, and the
+/// via goal a position only.
+fn spec_with_goals(seed: u64, n: usize, hold: bool) -> Spec {
+    let mut spec = random_spec(seed, n, true);
+    spec.goal_condition = if hold { EndCondition::Hold } else { EndCondition::Rest };
+    if !hold {
+        spec.start_condition = EndCondition::Free;
+    }
+    let frame = |name: &str| spec.model.frame_index(name).unwrap();
+    let rotation = mintorque::spatial::rpy_to_matrix(&Vec3::new(0.3, -0.2, 0.5));
+    spec.frame_goals = vec![
+        FrameGoal {
+            name: "end goal".into(),
+            frame: frame("hand"),
+            position: Vec3::new(0.2, -0.1, 0.4),
+            tolerance: 0.01,
+            orientation: Orientation::Rotation(rotation),
+            angle_tolerance: 0.05,
+            t: None,
+        },
+        FrameGoal {
+            name: "via goal".into(),
+            frame: frame("grip"),
+            position: Vec3::new(-0.1, 0.3, 0.2),
+            tolerance: 0.02,
+            orientation: Orientation::Axis { axis: Vec3::new(0.0, 0.6, 0.8), direction: Vec3::new(1.0, 0.0, 0.0) },
+            angle_tolerance: 0.1,
+            t: Some(0.47),
+        },
+    ];
+    if !hold {
+        spec.frame_goals[1].orientation = Orientation::Free;
+    }
+    spec.n_ctrl = 9;
+    spec
+}
+
 #[test]
 fn jacobians_match_finite_differences() {
-    for (seed, n, zev) in [(1u64, 1usize, true), (2, 4, true), (3, 9, false), (4, 15, true)] {
-        let spec = random_spec(seed, n, zev);
+    for (seed, n, zev, goals) in [
+        (1u64, 1usize, true, false),
+        (2, 4, true, false),
+        (3, 9, false, false),
+        (4, 15, true, false),
+        (21, 3, true, true),
+        (22, 8, false, true),
+    ] {
+        let spec = if goals { spec_with_goals(seed, n, zev) } else { random_spec(seed, n, zev) };
         let mut problem = Transcription::new(&spec).unwrap();
         let dims = problem.dims();
         let patterns = problem.jacobian_patterns();
@@ -164,8 +211,10 @@ fn inverse_inertia_objective_has_the_exact_gradient() {
 #[test]
 fn second_order_term_matches_differences_of_the_gradient() {
     use mintorque::solve::SymmetricMatrix;
-    for (seed, n, zev) in [(11u64, 1usize, true), (12, 4, false), (13, 9, true)] {
-        let spec = random_spec(seed, n, zev);
+    for (seed, n, zev, goals) in
+        [(11u64, 1usize, true, false), (12, 4, false, false), (13, 9, true, false), (23, 5, true, true), (24, 4, false, true)]
+    {
+        let spec = if goals { spec_with_goals(seed, n, zev) } else { random_spec(seed, n, zev) };
         let mut problem = Transcription::new(&spec).unwrap();
         let dims = problem.dims();
         let mut eval = Evaluation::new(dims, &problem.jacobian_patterns()).unwrap();

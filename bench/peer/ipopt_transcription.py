@@ -511,6 +511,11 @@ def main():
         unsupported.append(f"discretization.initial_guess = {guess!r}")
     if not task.get("motion", {}).get("zero_end_velocity", True):
         unsupported.append("motion.zero_end_velocity = false")
+    for end in ("start_condition", "goal_condition"):
+        if task.get("motion", {}).get(end, "rest") != "rest":
+            unsupported.append(f"motion.{end}")
+    if task.get("motion", {}).get("frame_goal"):
+        unsupported.append("motion.frame_goal")
     if unsupported:
         raise SystemExit(f"unsupported by the peer transcription: {', '.join(unsupported)}")
 

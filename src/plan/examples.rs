@@ -30,6 +30,7 @@ pub const ALL: &[Example] = &[
     Example { name: "leg_lift_space", text: include_str!("../../examples/leg_lift_space.toml") },
     Example { name: "pendulum", text: include_str!("../../examples/pendulum.toml") },
     Example { name: "push_up", text: include_str!("../../examples/push_up.toml") },
+    Example { name: "reach_shelf", text: include_str!("../../examples/reach_shelf.toml") },
     Example { name: "two_arm_reach", text: include_str!("../../examples/two_arm_reach.toml") },
     Example { name: "weight_lift_earth", text: include_str!("../../examples/weight_lift_earth.toml") },
     Example { name: "weight_lift_mars", text: include_str!("../../examples/weight_lift_mars.toml") },

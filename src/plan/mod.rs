@@ -4,6 +4,7 @@
 
 pub mod examples;
 mod guess;
+pub mod ik;
 mod multistart;
 mod refine;
 mod run;
@@ -13,10 +14,11 @@ pub mod task;
 pub mod transcription;
 
 pub use guess::initial_x;
+pub use ik::close_loop;
 pub use multistart::{next_signed, MultiStart, StartReport};
 pub use refine::{last_change, plan_refined, Level, Refinement};
 pub use run::{plan, plan_with_starts};
-pub use spec::{Balance, Contact, ContactKind, InitialGuess, Objective, PointLoad, Spec};
+pub use spec::{Balance, Contact, ContactKind, EndCondition, FrameGoal, InitialGuess, Objective, Orientation, PointLoad, Spec};
 pub use transcription::{NodeValues, Transcription};
 
 use crate::error::{Error, Result};
@@ -91,16 +93,20 @@ pub fn validate(spec: &Spec, origin: &str) -> Result<()> {
     if !(spec.duration.is_finite() && spec.duration > 0.0) {
         return err("duration", format!("must be a positive number of seconds, got {}", spec.duration));
     }
-    let min_ctrl = if spec.zero_end_velocity { 5 } else { 4 };
+    // The end conditions tie 1–3 control points at each end; at least one must stay free between them.
+    let min_ctrl = spec.start_condition.tied() + spec.goal_condition.tied() + 1;
     if spec.n_ctrl < min_ctrl {
         return err(
             "control_points",
             format!(
-                "{} is too few for a cubic B-spline with fixed end postures and velocities: need at least {min_ctrl}",
-                spec.n_ctrl
+                "{} is too few for a cubic B-spline with a \"{}\" start and a \"{}\" goal: need at least {min_ctrl}",
+                spec.n_ctrl,
+                spec.start_condition.name(),
+                spec.goal_condition.name()
             ),
         );
     }
+    ik::check_goals(spec, origin)?;
     if spec.nodes_per_span == 0 {
         return err("nodes_per_span", "must be at least 1".into());
     }
@@ -165,54 +171,6 @@ pub fn validate(spec: &Spec, origin: &str) -> Result<()> {
         }
     }
     Ok(())
-}
-
-/// Adjusts the joints `free` of posture `q` (damped Gauss–Newton, minimum-norm steps) until every contact
-/// holds to 1e-9 m; the other joints keep their values. Errs with the remaining distance when it cannot.
-pub fn close_loop(
-    model: &crate::Model,
-    contacts: &[Contact],
-    q: &[f64],
-    free: &[usize],
-) -> std::result::Result<Vec<f64>, String> {
-    use crate::dynamics::{kinematics, point_force};
-    use nalgebra::{DMatrix, DVector};
-    let mut q = q.to_vec();
-    let mut data = crate::dynamics::Data::new(model);
-    let rows: usize = contacts.iter().map(|c| c.directions().len()).sum();
-    let mut residual = f64::INFINITY;
-    for _ in 0..100 {
-        kinematics::placements(model, &mut data, &q);
-        let mut phi = DVector::zeros(rows);
-        let mut jac = DMatrix::zeros(rows, free.len());
-        let mut row = 0;
-        for c in contacts {
-            let body = model.frames[c.frame].body;
-            let p = kinematics::frame_placement(model, &data, c.frame).translation;
-            let path = point_force::path_dofs(model, body);
-            let mut jp = vec![crate::spatial::Vec3::zeros(); path.len()];
-            point_force::point_jacobian(&data, &path, &p, &mut jp);
-            for e in c.directions() {
-                phi[row] = e.dot(&(p - c.target));
-                for (col, dof) in free.iter().enumerate() {
-                    if let Some(k) = path.iter().position(|d| d == dof) {
-                        jac[(row, col)] = e.dot(&jp[k]);
-                    }
-                }
-                row += 1;
-            }
-        }
-        residual = phi.norm();
-        if residual < 1e-9 {
-            return Ok(q);
-        }
-        let step = jac.svd(true, true).solve(&(-phi), 1e-10).map_err(|e| e.to_string())?;
-        let scale = (0.5 / step.amax().max(1e-300)).min(1.0); // at most ~30° per step
-        for (col, dof) in free.iter().enumerate() {
-            q[*dof] += scale * step[col];
-        }
-    }
-    Err(format!("the contacts cannot be closed by moving the listed joints: {:.1} mm remain", residual * 1e3))
 }
 
 /// The worst scaled violation on a grid of `per_span` evenly spaced times per knot span (ends included).

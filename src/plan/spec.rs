@@ -104,6 +104,41 @@ pub enum Objective {
     TorqueInverseInertia,
 }
 
+/// How the motion starts or ends (each end separately): what the end control points fix besides the
+/// posture. For the clamped cubic, `q(0) = c₀`, `q̇(0) = 3(c₁ − c₀)/h` and `q̈(0) ∝ 2c₀ − 3c₁ + c₂`, so each
+/// condition fixes (or, with a task-space goal, ties) the first 1, 2 or 3 control points.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum EndCondition {
+    /// The velocity is free (only the posture is fixed): `c₀ = q₀`.
+    Free,
+    /// At rest: `q̇ = 0` (the paper's choice, the default): `c₀ = c₁ = q₀`.
+    #[default]
+    Rest,
+    /// At rest and holding the posture: `q̇ = q̈ = 0`, so the end torques are the static ones:
+    /// `c₀ = c₁ = c₂ = q₀`.
+    Hold,
+}
+
+impl EndCondition {
+    /// How many control points from the end this condition ties to the end posture (1, 2 or 3).
+    pub fn tied(self) -> usize {
+        match self {
+            EndCondition::Free => 1,
+            EndCondition::Rest => 2,
+            EndCondition::Hold => 3,
+        }
+    }
+
+    /// The task file's name of the condition.
+    pub fn name(self) -> &'static str {
+        match self {
+            EndCondition::Free => "free",
+            EndCondition::Rest => "rest",
+            EndCondition::Hold => "hold",
+        }
+    }
+}
+
 /// Where the solver starts.
 #[derive(Clone, Debug, PartialEq)]
 pub enum InitialGuess {
@@ -140,8 +175,14 @@ pub struct Spec {
     pub start: Vec<f64>,
     /// Goal posture in `q` order (rad or m).
     pub goal: Vec<f64>,
-    /// `q̇(0) = q̇(T) = 0` (the paper's choice; fixed exactly by the end control points).
-    pub zero_end_velocity: bool,
+    /// How the motion starts: at rest (the paper's choice, default), holding, or with a free velocity —
+    /// fixed exactly by the first control points.
+    pub start_condition: EndCondition,
+    /// How the motion ends, like `start_condition` (the last control points).
+    pub goal_condition: EndCondition,
+    /// Task-space goals: frames at world positions (and orientations) at the end or at via times. With one
+    /// at the end, the goal posture is an unknown of the planner (`goal` is then its initial guess).
+    pub frame_goals: Vec<FrameGoal>,
     /// B-spline control points per joint, N.
     pub n_ctrl: usize,
     /// Gauss–Legendre nodes per knot span.
@@ -165,7 +206,48 @@ pub struct Spec {
     pub initial_guess: InitialGuess,
 }
 
+/// How a task-space goal constrains the frame's orientation.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Orientation {
+    /// The position only.
+    Free,
+    /// The frame's unit `axis` (frame axes) points along the unit `direction` (world), within the tolerance.
+    Axis {
+        /// Unit vector in the frame's axes.
+        axis: Vec3,
+        /// Unit vector in world axes.
+        direction: Vec3,
+    },
+    /// The frame's whole rotation equals `rotation` (frame → world) within the tolerance.
+    Rotation(crate::spatial::Mat3),
+}
+
+/// A task-space goal: frame `frame` within `tolerance` of the world point `position` at time `t` (the end
+/// when `t` is `None`), and its orientation within `angle_tolerance`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FrameGoal {
+    /// Its name in reports and errors (the task file's field, e.g. `motion.frame_goal[0]`).
+    pub name: String,
+    /// Index in `model.frames`.
+    pub frame: usize,
+    /// World position (m).
+    pub position: Vec3,
+    /// Radius of the ball around `position` the frame's origin must reach (m, > 0).
+    pub tolerance: f64,
+    /// The orientation asked for.
+    pub orientation: Orientation,
+    /// Largest angle between the orientation reached and the one asked for (rad, > 0).
+    pub angle_tolerance: f64,
+    /// When (s, inside (0, T)); `None` for the end of the motion.
+    pub t: Option<f64>,
+}
+
 impl Spec {
+    /// Whether a task-space goal at the end makes the goal posture an unknown.
+    pub fn goal_is_free(&self) -> bool {
+        self.frame_goals.iter().any(|g| g.t.is_none())
+    }
+
     /// A problem with the task file's defaults (`docs/task-file.md`): the model's position and effort
     /// limits enforced, `q̇ = 0` at both ends, the torque objective with unit weights, N = 16 control points
     /// with 4 Gauss–Legendre nodes per span, a linear initial guess, no contacts, balance or loads, and the
@@ -180,7 +262,9 @@ impl Spec {
             duration,
             start,
             goal,
-            zero_end_velocity: true,
+            start_condition: EndCondition::Rest,
+            goal_condition: EndCondition::Rest,
+            frame_goals: vec![],
             n_ctrl: 16,
             nodes_per_span: 4,
             objective: Objective::Torque,

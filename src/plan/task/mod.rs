@@ -7,6 +7,7 @@
 //! against the model, one section at a time ([`resolve`]), and the planner's own validation.
 
 mod check;
+mod goals;
 mod guess;
 mod overrides;
 mod resolve;
@@ -146,7 +147,7 @@ impl Task {
             model.joint_names().iter().enumerate().map(|(i, n)| (n.to_string(), in_file_units(i, q[i]))).collect()
         };
         f.motion.start = posture(&self.spec.start);
-        f.motion.goal = posture(&self.spec.goal);
+        f.motion.goal = Some(posture(&self.spec.goal));
         f.motion.close_loop_with.clear();
         for (c, spec) in f.constraints.contact.iter_mut().zip(&self.spec.contacts) {
             c.target = Some([spec.target.x, spec.target.y, spec.target.z]);

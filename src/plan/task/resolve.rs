@@ -22,19 +22,30 @@ pub fn resolve(file: &TaskFile, base: &Path, origin: &str) -> Result<Spec> {
     let loads = forces(&model, &env.force, origin)?;
     let m = &file.motion;
     let mut start = posture(&model, &m.start, &base_posture, "motion.start", origin)?;
-    let mut goal = posture(&model, &m.goal, &base_posture, "motion.goal", origin)?;
+    let frame_goals = super::goals::frame_goals(&model, m, origin)?;
+    let mut goal = match &m.goal {
+        Some(goal) => posture(&model, goal, &base_posture, "motion.goal", origin)?,
+        // With a goal at the end, inverse kinematics starts from the start posture.
+        None if frame_goals.iter().any(|g| g.t.is_none()) => start.clone(),
+        None => {
+            return Err(Error::task(origin, "motion.goal", "missing: give a goal posture, or a [[motion.frame_goal]] at the end"))
+        }
+    };
+    let (start_condition, goal_condition) = super::goals::end_conditions(m, origin)?;
     let contacts = contacts(&model, &file.constraints.contact, &start, origin)?;
     close_loops(&model, &contacts, &m.close_loop_with, [&mut start, &mut goal], origin)?;
     let (objective, weights) = objective(&model, &file.objective, origin)?;
     let initial_guess = guess::initial_guess(&model, file, (&start, &goal), base, origin)?;
     let c = &file.constraints;
-    Ok(Spec {
+    let mut spec = Spec {
         origin: origin.to_string(),
         gravity,
         duration: m.duration,
         start,
         goal,
-        zero_end_velocity: m.zero_end_velocity,
+        start_condition,
+        goal_condition,
+        frame_goals,
         n_ctrl: file.discretization.control_points,
         nodes_per_span: file.discretization.nodes_per_span,
         objective,
@@ -46,7 +57,9 @@ pub fn resolve(file: &TaskFile, base: &Path, origin: &str) -> Result<Spec> {
         loads,
         initial_guess,
         model,
-    })
+    };
+    super::goals::goal_postures(&mut spec, origin)?;
+    Ok(spec)
 }
 
 /// Gravity presets (m/s², along −up, `environment.up`): earth 9.81, mars 3.71, moon 1.62, space 0.
@@ -344,7 +357,8 @@ pub(super) fn radian_warnings(file: &TaskFile, model: &Model, origin: &str) -> V
         return vec![];
     }
     let m = &file.motion;
-    let mut postures: Vec<(String, &Posture)> = vec![("motion.start".into(), &m.start), ("motion.goal".into(), &m.goal)];
+    let mut postures: Vec<(String, &Posture)> = vec![("motion.start".into(), &m.start)];
+    postures.extend(m.goal.iter().map(|g| ("motion.goal".into(), g)));
     postures.extend(m.via.iter().enumerate().map(|(k, v)| (format!("motion.via[{k}].posture"), &v.posture)));
     let revolute = |name: &String| model.dof_index(name).is_some_and(|i| model.joints[i + 1].kind != JointKind::Prismatic);
     let looks_like_radians = |p: &Posture| {

@@ -67,15 +67,23 @@ pub struct MotionSection {
     pub duration: f64,
     /// Start posture; joints not named are at 0, or at the base posture's value.
     pub start: Posture,
-    /// Goal posture, like `start`.
-    pub goal: Posture,
+    /// Goal posture, like `start`. With a `[[motion.frame_goal]]` at the end it may be left out: it is
+    /// then where inverse kinematics for the initial guess starts (the start posture if absent).
+    pub goal: Option<Posture>,
     /// The posture unnamed joints take: "zero" (default) or, for a built-in human, "reference" (standing /
     /// dead hang / top of a push-up).
     #[serde(default = "zero")]
     pub base: String,
-    /// `q̇ = 0` at both ends (default true).
-    #[serde(default = "yes")]
-    pub zero_end_velocity: bool,
+    /// `q̇ = 0` at both ends (default true); `false` is `start_condition = goal_condition = "free"`.
+    pub zero_end_velocity: Option<bool>,
+    /// How the motion starts: "rest" (`q̇ = 0`, default), "hold" (`q̇ = q̈ = 0`: at rest holding the
+    /// posture, the torques the static ones) or "free" (any velocity).
+    pub start_condition: Option<String>,
+    /// How the motion ends, like `start_condition`.
+    pub goal_condition: Option<String>,
+    /// Task-space goals: a frame at a world position (and orientation), at the end or at a time.
+    #[serde(default)]
+    pub frame_goal: Vec<FrameGoalSpec>,
     /// Postures the initial guess passes through (the paper's guessed midpoint), at `t` seconds; joints
     /// not named follow the straight line.
     #[serde(default)]
@@ -85,6 +93,43 @@ pub struct MotionSection {
     /// give the elbow angle, let the body tilt and the shoulder follow).
     #[serde(default)]
     pub close_loop_with: Vec<String>,
+}
+
+/// A `[[motion.frame_goal]]`: a frame at a world point (m), optionally oriented, at the end of the motion or
+/// at `t` seconds.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FrameGoalSpec {
+    /// The model's frame (e.g. "hand").
+    pub frame: String,
+    /// World position of the frame's origin (m).
+    #[serde(deserialize_with = "exact::array")]
+    pub position: [f64; 3],
+    /// How far from `position` the frame may end (mm, > 0; default 1).
+    #[serde(default = "one")]
+    pub tolerance_mm: f64,
+    /// When (s, inside (0, duration)); absent: at the end, where the goal posture is then solved for.
+    pub t: Option<f64>,
+    /// A unit vector in the frame's axes that is to point along `direction` (world); both or neither.
+    #[serde(default, deserialize_with = "exact::option")]
+    pub axis: Option<[f64; 3]>,
+    /// The world direction `axis` is to point along.
+    #[serde(default, deserialize_with = "exact::option")]
+    pub direction: Option<[f64; 3]>,
+    /// The frame's whole orientation, URDF roll-pitch-yaw (degrees, `R = Rz(y) Ry(p) Rx(r)`); not with `axis`.
+    #[serde(default, deserialize_with = "exact::option")]
+    pub rpy: Option<[f64; 3]>,
+    /// Largest angle between the orientation reached and the one asked for (degrees, > 0; default 2).
+    #[serde(default = "two")]
+    pub angle_tolerance_deg: f64,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+fn two() -> f64 {
+    2.0
 }
 
 /// A `[[motion.via]]` posture of the initial guess.

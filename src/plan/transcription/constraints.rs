@@ -102,11 +102,10 @@ impl Transcription<'_> {
                     out.g[gi] = if upper { w.q[i] - self.limits_up[i] } else { self.limits_low[i] - w.q[i] };
                     if want_jac {
                         let vals = out.jg.row_values_mut(gi);
-                        let mut pos = 0;
-                        for a in 0..4 {
-                            if !self.layout.fixed[basis.first + a] {
-                                vals[pos] = sign * basis.b[a];
-                                pos += 1;
+                        vals.fill(0.0);
+                        for (a, slot) in self.layout.motion_slots(basis.first).iter().enumerate() {
+                            if let Some(slot) = slot {
+                                vals[*slot] += sign * basis.b[a];
                             }
                         }
                     }
@@ -187,6 +186,10 @@ impl Transcription<'_> {
         }
         if raw <= 0.0 {
             return "holds".into();
+        }
+        let node_rows = self.nodes.t.len() * self.ineq_rows.len();
+        if index >= node_rows {
+            return self.goal_violation(index - node_rows, raw);
         }
         let (_, row) = self.decode_ineq(index);
         let prismatic = |i: usize| self.spec.model.joints[i + 1].kind == crate::model::JointKind::Prismatic;

@@ -15,7 +15,7 @@
 //! and in `λ`, and `∂τ/∂q̈ = H(q)` does not depend on `q̇`, so `∂²φ/∂q̈² = ∂²φ/∂q̈∂q̇ = ∂²φ/∂λ² = ∂²φ/∂λ∂q̇ = 0`
 //! and the remaining blocks follow by symmetry from the `q` and `q̇` columns. The loop closures
 //! `Φ = Eᵀ(p(q) − target)` at the contact nodes add `Σ w_h ∇²Φ`, the difference of the point Jacobians
-//! along each `qᵢ`. Position limits and contact-force signs are linear and add nothing.
+//! along each `qᵢ`; the task-space goals' rows (`goals.rs`) the same way at their times. Position limits and contact-force signs are linear and add nothing.
 
 use super::constraints::{balance_coefficients, dot6};
 use super::{IneqRow, Transcription};
@@ -85,6 +85,8 @@ impl Transcription<'_> {
                 }
             }
         }
+        let g0 = self.n_nodes() * self.ineq_rows.len();
+        self.add_goal_second_order(&weights[2][g0..], target);
     }
 
     /// `ω` and `ω_W` of node `k` from the row weights; `false` if all vanish.
@@ -204,21 +206,29 @@ impl Transcription<'_> {
     /// `Σ w_h ∇²Φ` of contact node `k` into the `q` block of `hess.s` (dimension `d` as for the nodes).
     fn closure_hessian(&mut self, k: usize, weights: &[f64]) {
         let nv = self.layout.nv;
-        let d = 3 * nv + self.layout.n_lambda;
         let basis = self.contact_nodes.basis[k];
         {
             let w = &mut self.work;
             basis.eval(&self.ctrl, nv, &mut w.q, &mut w.qd, &mut w.qdd);
         }
+        self.q_hessian(&mut |t: &mut Self, out: &mut [f64]| t.closure_gradient(weights, out));
+    }
+
+    /// The `q` block of `hess.s` (dimension `d` as for the nodes) for rows of `q` only whose weighted
+    /// gradient `gradient` writes at `work.q`: `∂²/∂qᵢ∂qⱼ` by forward differences along each `qⱼ`,
+    /// symmetrised. `work.q` is restored.
+    pub(super) fn q_hessian(&mut self, gradient: &mut dyn FnMut(&mut Self, &mut [f64])) {
+        let nv = self.layout.nv;
+        let d = 3 * nv + self.layout.n_lambda;
         self.hess.z[..nv].copy_from_slice(&self.work.q);
         self.hess.s.fill(0.0);
         let mut grad = std::mem::take(&mut self.hess.grad);
         let mut perturbed = std::mem::take(&mut self.hess.grad_perturbed);
-        self.closure_gradient(weights, &mut grad);
+        gradient(self, &mut grad[..nv]);
         for j in 0..nv {
             self.work.q.copy_from_slice(&self.hess.z[..nv]);
             let epsilon = self.perturb(j);
-            self.closure_gradient(weights, &mut perturbed);
+            gradient(self, &mut perturbed[..nv]);
             for i in 0..nv {
                 let v = 0.5 * (perturbed[i] - grad[i]) / epsilon;
                 self.hess.s[i * d + j] += v;
@@ -250,7 +260,12 @@ impl Transcription<'_> {
 
     /// `target += Bᵀ S B` for the node with `basis`, `S = hess.s`; `blocks` = how many of `q, q̇, q̈` the
     /// rows depend on (3 at the quadrature nodes, 1 for the closures, which have no `λ` either).
-    fn add_mapped(&mut self, basis: &crate::trajectory::bspline::BasisAt, blocks: usize, target: &mut SymmetricMatrix) {
+    pub(super) fn add_mapped(
+        &mut self,
+        basis: &crate::trajectory::bspline::BasisAt,
+        blocks: usize,
+        target: &mut SymmetricMatrix,
+    ) {
         let (nv, nl) = (self.layout.nv, self.layout.n_lambda);
         let d = 3 * nv + nl;
         let h = &mut self.hess;
@@ -260,7 +275,11 @@ impl Transcription<'_> {
             for i in 0..nv {
                 if let Some(col) = self.layout.joint_var(j, i) {
                     let coef = [(i, basis.b[a]), (nv + i, basis.db[a]), (2 * nv + i, basis.ddb[a])];
-                    h.local.push((col, coef, blocks));
+                    // A control point sharing its owner's unknowns adds its basis functions to the owner's.
+                    match h.local.iter_mut().find(|(c, ..)| *c == col) {
+                        Some((_, owner, _)) => owner.iter_mut().zip(coef).for_each(|(o, c)| o.1 += c.1),
+                        None => h.local.push((col, coef, blocks)),
+                    }
                 }
             }
             if blocks == 3 {

@@ -10,13 +10,15 @@
 //! ```
 //!
 //! Unknowns `x`, control-point-major so that every Jacobian is banded: for control point `j`, the values
-//! of the free joints (none for the four end control points when the end velocities are fixed: `c₀ = c₁ =
-//! q₀`, `c_{N−2} = c_{N−1} = q_T` make `q(0), q̇(0), q(T), q̇(T)` exact), then the control points of the
+//! of the free joints (none for the end control points the end conditions fix: at rest `c₀ = c₁ = q₀`,
+//! `c_{N−2} = c_{N−1} = q_T` make `q(0), q̇(0), q(T), q̇(T)` exact, holding `c₂`, `c_{N−3}` too; with a
+//! task-space goal at the end the tied last ones share one unknown posture, `Layout::owner`), then the control points of the
 //! contact forces `λ(t)` (cubic B-splines on the same knots, so the loads on the hands are smooth and
 //! defined at every time). Gradients follow eq. 33 from the engine's `∂τ/∂q`, `∂τ/∂q̇` and `H`, touching
 //! only the four non-zero basis functions at each node.
 
 mod constraints;
+pub mod goals;
 mod hessian;
 mod objective;
 
@@ -39,6 +41,10 @@ pub struct Layout {
     pub n_lambda: usize,
     /// Control points whose joint values are fixed by the boundary conditions.
     pub fixed: Vec<bool>,
+    /// The control point whose unknowns each control point's joint values are: itself, or — for the last
+    /// control points of a goal posture left to the planner, tied by the goal's end condition — the first of
+    /// them (`c_{N−2} = c_{N−1}` at rest, `c_{N−3} = c_{N−2} = c_{N−1}` holding: one unknown posture).
+    pub owner: Vec<usize>,
     /// Index in `x` of each control point's first unknown.
     pub block_start: Vec<usize>,
     /// Number of unknowns.
@@ -50,28 +56,53 @@ pub struct Layout {
 
 impl Layout {
     /// The layout of `n_ctrl` control points of `nv` joints and `n_lambda` contact-force components; the
-    /// first and last (and, with `zero_end_velocity`, the second and second-to-last) joint control points are
-    /// fixed.
-    pub fn new(nv: usize, n_ctrl: usize, n_lambda: usize, zero_end_velocity: bool, lambda_scale: f64) -> Layout {
-        let fixed: Vec<bool> =
-            (0..n_ctrl).map(|j| j == 0 || j + 1 == n_ctrl || (zero_end_velocity && (j == 1 || j + 2 == n_ctrl))).collect();
+    /// first `head` and the last `tail` joint control points are fixed (by the end conditions:
+    /// [`EndCondition::tied`](super::spec::EndCondition::tied)), and the last `shared` share one posture's
+    /// unknowns (a task-space goal: `tail = 0`, `shared` the goal's `tied`).
+    pub fn new(nv: usize, n_ctrl: usize, n_lambda: usize, [head, tail]: [usize; 2], shared: usize, lambda_scale: f64) -> Layout {
+        let fixed: Vec<bool> = (0..n_ctrl).map(|j| j < head || j + tail >= n_ctrl).collect();
+        let first_shared = n_ctrl - shared.max(1);
+        let owner: Vec<usize> = (0..n_ctrl).map(|j| j.min(first_shared)).collect();
         let mut block_start = Vec::with_capacity(n_ctrl);
         let mut n = 0;
-        for &f in &fixed {
+        for j in 0..n_ctrl {
             block_start.push(n);
-            n += if f { 0 } else { nv } + n_lambda;
+            n += if !fixed[j] && owner[j] == j { nv } else { 0 } + n_lambda;
         }
-        Layout { nv, n_ctrl, n_lambda, fixed, block_start, n, lambda_scale }
+        Layout { nv, n_ctrl, n_lambda, fixed, owner, block_start, n, lambda_scale }
+    }
+
+    /// Whether control point `j` holds joint unknowns of its own (neither fixed nor sharing another's).
+    pub fn owns(&self, j: usize) -> bool {
+        !self.fixed[j] && self.owner[j] == j
     }
 
     /// Index in `x` of joint `i` at control point `j`, `None` when it is fixed.
     pub fn joint_var(&self, j: usize, i: usize) -> Option<usize> {
-        (!self.fixed[j]).then(|| self.block_start[j] + i)
+        let o = self.owner[j];
+        (!self.fixed[o]).then(|| self.block_start[o] + i)
+    }
+
+    /// For the node whose four basis functions start at control point `first`: which block of `nv` motion
+    /// columns each of the four control points' unknowns are (its owner's for a shared one), `None` if fixed.
+    pub fn motion_slots(&self, first: usize) -> [Option<usize>; 4] {
+        let mut slots = [None; 4];
+        let mut next = 0;
+        for a in 0..4 {
+            let j = first + a;
+            if self.owns(j) {
+                slots[a] = Some(next);
+                next += 1;
+            } else if !self.fixed[j] {
+                slots[a] = slots[self.owner[j] - first]; // the owner precedes it in the same window
+            }
+        }
+        slots
     }
 
     /// Index in `x` of contact-force component `m` at control point `j`.
     pub fn lambda_var(&self, j: usize, m: usize) -> usize {
-        self.block_start[j] + if self.fixed[j] { 0 } else { self.nv } + m
+        self.block_start[j] + if self.owns(j) { self.nv } else { 0 } + m
     }
 
     /// Splits `x` into joint control points (`n_ctrl × nv`, fixed ones taken from `fixed_values`) and
@@ -179,6 +210,7 @@ pub struct Transcription<'s> {
     lam_ctrl: Vec<f64>,
     work: NodeWork,
     hess: hessian::HessianWork,
+    goals: goals::Goals,
 }
 
 /// Per-node values and derivatives with respect to the node's `q`, `q̇`, `q̈` and `λ̃`.
@@ -265,18 +297,14 @@ impl<'s> Transcription<'s> {
         }
         let n_lambda = offset;
         let total_weight = model.total_mass() * spec.gravity.norm().max(9.81);
-        let layout = Layout::new(nv, spec.n_ctrl, n_lambda, spec.zero_end_velocity, total_weight);
+        let head = spec.start_condition.tied();
+        let (tail, shared) = if spec.goal_is_free() { (0, spec.goal_condition.tied()) } else { (spec.goal_condition.tied(), 0) };
+        let layout = Layout::new(nv, spec.n_ctrl, n_lambda, [head, tail], shared, total_weight);
+        // The tied control points equal the end posture: c₀ (= c₁ (= c₂)) = q₀, likewise at the goal.
         let mut fixed_values = vec![0.0; spec.n_ctrl * nv];
-        for i in 0..nv {
-            let (qd0, qdt) = (0.0, 0.0);
-            let (head, tail) = spline.end_control_points(spec.start[i], qd0, spec.goal[i], qdt);
-            let n = spec.n_ctrl;
-            fixed_values[i] = head[0];
-            fixed_values[(n - 1) * nv + i] = tail[1];
-            if spec.zero_end_velocity {
-                fixed_values[nv + i] = head[1];
-                fixed_values[(n - 2) * nv + i] = tail[0];
-            }
+        for j in 0..spec.n_ctrl {
+            let end = if j < head { &spec.start } else { &spec.goal };
+            fixed_values[j * nv..(j + 1) * nv].copy_from_slice(end);
         }
         let (limits_low, limits_up): (Vec<f64>, Vec<f64>) = model.position_limits();
         let effort: Vec<f64> = model.joints[1..].iter().map(|j| j.limits.effort).collect();
@@ -340,6 +368,7 @@ impl<'s> Transcription<'s> {
             rda: vec![0.0; nv * nv],
             rdl: vec![0.0; nv * n_lambda],
         };
+        let goals = goals::Goals::new(spec, &spline);
         Transcription {
             n_eq_node: n_lambda,
             sqrt_weights: spec.weights.iter().map(|w| w.sqrt()).collect(),
@@ -361,6 +390,7 @@ impl<'s> Transcription<'s> {
             total_weight,
             work,
             hess: hessian::HessianWork::new(nv, n_lambda),
+            goals,
         }
     }
 
@@ -380,7 +410,9 @@ impl<'s> Transcription<'s> {
         let mut motion = Vec::new();
         let mut lambda = Vec::new();
         for j in basis.first..basis.first + 4 {
-            motion.extend((0..l.nv).filter_map(|i| l.joint_var(j, i)));
+            if l.owns(j) {
+                motion.extend((0..l.nv).filter_map(|i| l.joint_var(j, i)));
+            }
             lambda.extend((0..l.n_lambda).map(|m| l.lambda_var(j, m)));
         }
         (motion, lambda)
@@ -512,15 +544,15 @@ impl<'s> Transcription<'s> {
     /// node's `q`, `q̇`, `q̈` (each `nv`) and `λ̃` (`n_lambda`), by the chain rule of eq. 33, scaled by `s`.
     fn chain_rule(layout: &Layout, basis: &BasisAt, s: f64, d: Derivatives, out: &mut [f64]) {
         let Derivatives { q: d_q, v: d_v, a: d_a, lambda: d_l } = d;
-        let mut pos = 0;
-        for a in 0..4 {
-            if layout.fixed[basis.first + a] {
-                continue;
-            }
+        let slots = layout.motion_slots(basis.first);
+        let nv = layout.nv;
+        let mut pos = slots.iter().flatten().max().map_or(0, |s| (s + 1) * nv);
+        out[..pos].fill(0.0);
+        for (a, slot) in slots.iter().enumerate() {
+            let Some(slot) = slot else { continue };
             let (b, db, ddb) = (basis.b[a] * s, basis.db[a] * s, basis.ddb[a] * s);
-            for i in 0..layout.nv {
-                out[pos] = d_q[i] * b + d_v[i] * db + d_a[i] * ddb;
-                pos += 1;
+            for i in 0..nv {
+                out[slot * nv + i] += d_q[i] * b + d_v[i] * db + d_a[i] * ddb;
             }
         }
         if let Some(d_l) = d_l {
@@ -550,6 +582,11 @@ impl Transcription<'_> {
         self.ineq_rows.len()
     }
 
+    /// Loop-closure rows.
+    fn n_contact_eq(&self) -> usize {
+        self.contact_nodes.t.len() * self.n_eq_node
+    }
+
     /// Which node and which row within it an inequality index is.
     pub fn decode_ineq(&self, index: usize) -> (usize, IneqRow) {
         let per = self.n_ineq_node().max(1);
@@ -568,8 +605,8 @@ impl Problem for Transcription<'_> {
         Dims {
             n: self.layout.n,
             n_res: nn * self.layout.nv,
-            n_eq: self.contact_nodes.t.len() * self.n_eq_node,
-            n_ineq: nn * self.n_ineq_node(),
+            n_eq: self.n_contact_eq(),
+            n_ineq: nn * self.n_ineq_node() + self.goals.n_rows(),
         }
     }
 
@@ -584,9 +621,10 @@ impl Problem for Transcription<'_> {
             }
             for row in &self.ineq_rows {
                 p.g.push(match *row {
-                    IneqRow::UpperPosition(i) | IneqRow::LowerPosition(i) => {
-                        (basis.first..basis.first + 4).filter_map(|j| self.layout.joint_var(j, i)).collect()
-                    }
+                    IneqRow::UpperPosition(i) | IneqRow::LowerPosition(i) => (basis.first..basis.first + 4)
+                        .filter(|&j| self.layout.owns(j))
+                        .filter_map(|j| self.layout.joint_var(j, i))
+                        .collect(),
                     IneqRow::UpperTorque(_) | IneqRow::LowerTorque(_) | IneqRow::Balance(_) => both.clone(),
                     IneqRow::Push(c) | IneqRow::Friction(c, _) => self.contact_columns(basis, c),
                 });
@@ -598,6 +636,7 @@ impl Problem for Transcription<'_> {
                 p.h.push(motion.clone());
             }
         }
+        p.g.extend(self.goal_patterns());
         p
     }
 
@@ -620,6 +659,7 @@ impl Problem for Transcription<'_> {
             }
             self.inequality_rows(k, want_jac, out);
         }
+        self.goal_rows(self.n_nodes() * self.n_ineq_node(), want_jac, out);
         Ok(())
     }
 
@@ -651,10 +691,9 @@ impl Problem for Transcription<'_> {
                 IneqRow::Balance(_) => (0.1 * self.total_weight).max(1.0),
             })
             .collect();
-        Scales {
-            eq: vec![1.0; self.contact_nodes.t.len() * self.n_eq_node],
-            ineq: (0..nn).flat_map(|_| per_node.iter().copied()).collect(),
-        }
+        // Goals in metres (like the contacts), their orientations as cosines.
+        let goals = std::iter::repeat_n(1.0, self.goals.n_rows());
+        Scales { eq: vec![1.0; self.n_contact_eq()], ineq: (0..nn).flat_map(|_| per_node.iter().copied()).chain(goals).collect() }
     }
 
     fn row_name(&self, family: RowFamily, index: usize) -> String {
@@ -673,6 +712,9 @@ impl Problem for Transcription<'_> {
     fn constraint_name(&self, kind: ConstraintKind, index: usize) -> String {
         let joint = |i: usize| self.spec.model.joints[i + 1].name.clone();
         match kind {
+            ConstraintKind::Inequality if index >= self.n_nodes() * self.n_ineq_node() => {
+                self.goal_row_name(index - self.n_nodes() * self.n_ineq_node())
+            }
             ConstraintKind::Equality => {
                 let per = self.n_eq_node.max(1);
                 let (k, m) = (index / per, index % per);
