@@ -75,6 +75,24 @@ impl Model {
         Model { model, data }
     }
 
+    /// `f` at every state of a batch of three arrays, one `nv`-vector per state, in the caller's shape.
+    fn per_state<'py>(
+        &mut self,
+        py: Python<'py>,
+        inputs: [(&str, &PyReadonlyArrayDyn<'py, f64>); 3],
+        f: impl for<'d> Fn(&mintorque::Model, &'d mut Data, [&[f64]; 3]) -> &'d nalgebra::DVector<f64>,
+    ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+        let nv = self.model.nv();
+        let b = batch(&inputs, nv)?;
+        let mut out = Array2::zeros((b.n, nv));
+        for k in 0..b.n {
+            let [x, y, z] = [0, 1, 2].map(|i| b.rows[i].row(k).to_vec());
+            let r = f(&self.model, &mut self.data, [&x, &y, &z]);
+            out.row_mut(k).iter_mut().zip(r.iter()).for_each(|(o, v)| *o = *v);
+        }
+        Ok(shaped(py, out, b.single))
+    }
+
     fn gravity(&self, gravity: Option<[f64; 3]>) -> PyResult<Vec3> {
         let g = gravity.map_or(self.model.gravity, |g| Vec3::new(g[0], g[1], g[2]));
         mintorque::dynamics::batch::check_gravity(&g, "gravity", "gravity").map_err(error)?;
@@ -127,15 +145,8 @@ impl Model {
         a: PyReadonlyArrayDyn<'py, f64>,
         gravity: Option<[f64; 3]>,
     ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
-        let (nv, g) = (self.model.nv(), self.gravity(gravity)?);
-        let b = batch(&[("q", &q), ("v", &v), ("a", &a)], nv)?;
-        let mut out = Array2::zeros((b.n, nv));
-        for k in 0..b.n {
-            let [q, v, a] = [0, 1, 2].map(|i| b.rows[i].row(k).to_vec());
-            let tau = rnea(&self.model, &mut self.data, &q, &v, &a, &g, None);
-            out.row_mut(k).iter_mut().zip(tau.iter()).for_each(|(o, t)| *o = *t);
-        }
-        Ok(shaped(py, out, b.single))
+        let g = self.gravity(gravity)?;
+        self.per_state(py, [("q", &q), ("v", &v), ("a", &a)], |m, d, [q, v, a]| rnea(m, d, q, v, a, &g, None))
     }
 
     /// The derivatives of inverse dynamics: `(∂τ/∂q, ∂τ/∂q̇, H)`, each `nv × nv` per state.
@@ -193,15 +204,8 @@ impl Model {
         tau: PyReadonlyArrayDyn<'py, f64>,
         gravity: Option<[f64; 3]>,
     ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
-        let (nv, g) = (self.model.nv(), self.gravity(gravity)?);
-        let b = batch(&[("q", &q), ("v", &v), ("tau", &tau)], nv)?;
-        let mut out = Array2::zeros((b.n, nv));
-        for k in 0..b.n {
-            let [q, v, t] = [0, 1, 2].map(|i| b.rows[i].row(k).to_vec());
-            let a = aba(&self.model, &mut self.data, &q, &v, &t, &g, None);
-            out.row_mut(k).iter_mut().zip(a.iter()).for_each(|(o, x)| *o = *x);
-        }
-        Ok(shaped(py, out, b.single))
+        let g = self.gravity(gravity)?;
+        self.per_state(py, [("q", &q), ("v", &v), ("tau", &tau)], |m, d, [q, v, t]| aba(m, d, q, v, t, &g, None))
     }
 
     fn __repr__(&self) -> String {
