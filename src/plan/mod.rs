@@ -8,6 +8,7 @@ mod multistart;
 mod refine;
 mod run;
 pub mod simulate;
+mod solids;
 pub mod spec;
 pub mod task;
 pub mod transcription;
@@ -16,7 +17,9 @@ pub use guess::initial_x;
 pub use multistart::{MultiStart, StartReport};
 pub use refine::{last_change, plan_refined, Level, Refinement};
 pub use run::{plan, plan_with_starts};
-pub use spec::{Balance, Contact, ContactKind, InitialGuess, Objective, PointLoad, Spec};
+pub use spec::{
+    Balance, Collider, Collision, Contact, ContactKind, InitialGuess, Objective, Obstacle, ObstacleShape, PointLoad, Spec,
+};
 pub use transcription::{NodeValues, Transcription};
 
 use crate::error::{Error, Result};
@@ -164,7 +167,7 @@ pub fn validate(spec: &Spec, origin: &str) -> Result<()> {
             return err("constraints.balance", "the support rectangle must have min < max in x and y".into());
         }
     }
-    Ok(())
+    solids::validate(spec, origin)
 }
 
 /// Adjusts the joints `free` of posture `q` (damped Gauss–Newton, minimum-norm steps) until every contact

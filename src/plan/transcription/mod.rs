@@ -16,6 +16,7 @@
 //! defined at every time). Gradients follow eq. 33 from the engine's `∂τ/∂q`, `∂τ/∂q̇` and `H`, touching
 //! only the four non-zero basis functions at each node.
 
+pub(crate) mod collision;
 mod constraints;
 mod hessian;
 mod objective;
@@ -173,6 +174,7 @@ pub struct Transcription<'s> {
     limits_up: Vec<f64>,
     effort: Vec<f64>,
     total_weight: f64,
+    collisions: collision::Collisions,
     // scratch, allocated once
     data: Data,
     ctrl: Vec<f64>,
@@ -314,6 +316,8 @@ impl<'s> Transcription<'s> {
                 ineq_rows.push(IneqRow::Balance(k));
             }
         }
+        let collisions = collision::Collisions::new(spec);
+        ineq_rows.extend((0..collisions.pairs.len()).map(IneqRow::Collision));
         let load_paths = spec.loads.iter().map(|l| path_dofs(model, model.frames[l.frame].body)).collect();
         let work = NodeWork {
             q: vec![0.0; nv],
@@ -359,6 +363,7 @@ impl<'s> Transcription<'s> {
             limits_up,
             effort,
             total_weight,
+            collisions,
             work,
             hess: hessian::HessianWork::new(nv, n_lambda),
         }
@@ -589,6 +594,7 @@ impl Problem for Transcription<'_> {
                     }
                     IneqRow::UpperTorque(_) | IneqRow::LowerTorque(_) | IneqRow::Balance(_) => both.clone(),
                     IneqRow::Push(c) | IneqRow::Friction(c, _) => self.contact_columns(basis, c),
+                    IneqRow::Collision(_) => motion.clone(),
                 });
             }
         }
@@ -649,6 +655,7 @@ impl Problem for Transcription<'_> {
                 IneqRow::Push(_) | IneqRow::Friction(..) => self.total_weight.max(1.0),
                 IneqRow::Balance(4) => self.total_weight.max(1.0),
                 IneqRow::Balance(_) => (0.1 * self.total_weight).max(1.0),
+                IneqRow::Collision(_) => 1.0, // metres, like the contacts
             })
             .collect();
         Scales {
@@ -697,6 +704,7 @@ impl Problem for Transcription<'_> {
                     IneqRow::Friction(c, _) => format!("friction cone of \"{}\"", contact(c)),
                     IneqRow::Balance(4) => "balance: feet stay loaded".to_string(),
                     IneqRow::Balance(_) => "balance: centre of pressure inside the support".to_string(),
+                    IneqRow::Collision(p) => format!("distance between {}", self.collisions.describe(self.spec, p)),
                 };
                 format!("{what} at t = {t:.3} s")
             }
