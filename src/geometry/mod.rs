@@ -84,7 +84,10 @@ pub struct Separation {
     /// The witness point on the second shape's segment (m, world); for an obstacle, its surface point
     /// nearest `on_a`.
     pub on_b: Vec3,
-    /// Unit separation direction, from the second shape towards the first: `∂d/∂p_a = n`, `∂d/∂p_b = −n`.
+    /// Separation direction, from the second shape towards the first: `∂d/∂p_a = n`, `∂d/∂p_b = −n`. A
+    /// unit vector, except for a segment deep inside a box or finite cylinder whose nearest point sits
+    /// on a crease of the signed distance (where the nearest face changes): there the combination of the
+    /// two faces' normals that keeps the minimum (shorter than 1).
     pub normal: Vec3,
 }
 
@@ -150,26 +153,32 @@ const BISECTIONS: usize = 60;
 pub fn capsule_obstacle(c: &Capsule, o: &ObstacleShape) -> Separation {
     let ab = c.b - c.a;
     let at = |t: f64| c.a + ab * t;
-    let slope = |t: f64| o.point_distance(&at(t)).1.dot(&ab);
-    let t = if slope(0.0) >= 0.0 {
-        0.0
-    } else if slope(1.0) <= 0.0 {
-        1.0
+    let gradient = |t: f64| o.point_distance(&at(t)).1;
+    let (t, n) = if gradient(0.0).dot(&ab) >= 0.0 {
+        (0.0, gradient(0.0))
+    } else if gradient(1.0).dot(&ab) <= 0.0 {
+        (1.0, gradient(1.0))
     } else {
         let (mut lo, mut hi) = (0.0, 1.0);
         for _ in 0..BISECTIONS {
             let mid = 0.5 * (lo + hi);
-            if slope(mid) < 0.0 {
+            if gradient(mid).dot(&ab) < 0.0 {
                 lo = mid;
             } else {
                 hi = mid;
             }
         }
-        0.5 * (lo + hi)
+        // Inside a box or a finite cylinder `sd` has creases (where the nearest face changes): a minimum
+        // on one is where the faces' gradients n₋, n₊ balance, and ∂d/∂p = λn₋ + (1 − λ)n₊ with
+        // λ(n₋·ab) + (1 − λ)(n₊·ab) = 0. Where `sd` is smooth n₋ = n₊ and this is ∇sd.
+        let (n_lo, n_hi) = (gradient(lo), gradient(hi));
+        let (s_lo, s_hi) = (n_lo.dot(&ab), n_hi.dot(&ab));
+        let lambda = if s_hi - s_lo > 0.0 { s_hi / (s_hi - s_lo) } else { 0.5 };
+        (0.5 * (lo + hi), n_lo * lambda + n_hi * (1.0 - lambda))
     };
     let p = at(t);
-    let (sd, n) = o.point_distance(&p);
-    Separation { distance: sd - c.radius, on_a: p, on_b: p - n * sd, normal: n }
+    let (sd, surface_normal) = o.point_distance(&p);
+    Separation { distance: sd - c.radius, on_a: p, on_b: p - surface_normal * sd, normal: n }
 }
 
 /// The signed distance between two capsules (world): `‖p_a − p_b‖ − r_a − r_b`, `p_a`, `p_b` the closest
