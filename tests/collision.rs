@@ -403,3 +403,69 @@ fn the_dip_down_passes_the_bar_and_would_go_through_it_unconstrained() {
         assert!(message.contains(part), "{message:?} lacks {part:?}");
     }
 }
+
+// ---- Collision shapes from the model files ----
+
+const URDF: &str = r#"<?xml version="1.0"?>
+<robot name="arm">
+  <link name="world"/>
+  <link name="upper">
+    <inertial><origin xyz="0 0 -0.2"/><mass value="2.0"/><inertia ixx="0.03" iyy="0.03" izz="0.002"/></inertial>
+    <visual><origin xyz="0 0 -0.2"/><geometry><box size="0.1 0.1 0.4"/></geometry></visual>
+    <collision><origin xyz="0 0 -0.2"/><geometry><cylinder radius="0.05" length="0.4"/></geometry></collision>
+    <collision><geometry><mesh filename="upper.stl"/></geometry></collision>
+  </link>
+  <link name="hand">
+    <inertial><mass value="0.5"/><inertia ixx="0.001" iyy="0.001" izz="0.001"/></inertial>
+    <collision><origin xyz="0 0 -0.05"/><geometry><sphere radius="0.04"/></geometry></collision>
+  </link>
+  <link name="lower">
+    <inertial><origin xyz="0 0 -0.15"/><mass value="1.0"/><inertia ixx="0.01" iyy="0.01" izz="0.001"/></inertial>
+    <visual><geometry><mesh filename="lower.stl"/></geometry></visual>
+    <collision><geometry><mesh filename="lower.stl"/></geometry></collision>
+  </link>
+  <joint name="shoulder" type="revolute"><parent link="world"/><child link="upper"/><axis xyz="0 1 0"/>
+    <limit lower="-3" upper="3" effort="50" velocity="5"/></joint>
+  <joint name="elbow" type="revolute"><parent link="upper"/><child link="lower"/><origin xyz="0 0 -0.4"/>
+    <axis xyz="0 1 0"/><limit lower="-3" upper="3" effort="50" velocity="5"/></joint>
+  <joint name="wrist" type="fixed"><parent link="lower"/><child link="hand"/><origin xyz="0 0 -0.3"/></joint>
+</robot>"#;
+
+#[test]
+fn urdf_collision_primitives_become_capsules_and_meshes_are_skipped() {
+    let model = mintorque::model::urdf::parse(URDF, "arm.urdf").unwrap();
+    let upper = model.bodies.iter().position(|b| b.name == "upper").unwrap();
+    let lower = model.bodies.iter().position(|b| b.name == "lower").unwrap();
+    // The cylinder (not the visual box): its whole axis, its radius; the mesh adds nothing.
+    let caps = model.collision_capsules(upper);
+    assert_eq!(caps.len(), 1, "{caps:?}");
+    let near = |a: &Vec3, b: [f64; 3]| (a - Vec3::from(b)).norm() < 1e-12;
+    assert!(near(&caps[0].a, [0.0, 0.0, -0.4]) && near(&caps[0].b, [0.0, 0.0, 0.0]) && caps[0].radius == 0.05, "{caps:?}");
+    // A mesh-only link takes the welded hand's sphere (0.05 below the hand, 0.3 below the elbow).
+    let caps = model.collision_capsules(lower);
+    assert_eq!(caps.len(), 1, "{caps:?}");
+    assert!(near(&caps[0].a, [0.0, 0.0, -0.35]) && caps[0].a == caps[0].b && caps[0].radius == 0.04, "{caps:?}");
+}
+
+#[test]
+fn a_figure_file_gives_or_removes_collision_shapes() {
+    let figure = common::FIGURE.replace(
+        "inertia = { ixx = 0.2, iyy = 0.2, izz = 0.01 }",
+        "inertia = { ixx = 0.2, iyy = 0.2, izz = 0.01 }\ncollision = [{ capsule = { a = [0, 0, 0], b = [0, 0, -1.0], radius = 0.03 } }]",
+    );
+    assert_ne!(figure, common::FIGURE);
+    let model = mintorque::model::figure::parse(&figure, "two.figure.toml").unwrap();
+    let arm = model.bodies.iter().position(|b| b.name == "arm").unwrap();
+    let caps = model.collision_capsules(arm);
+    assert_eq!(caps.len(), 1);
+    assert_eq!((caps[0].b.z, caps[0].radius), (-1.0, 0.03));
+    let none = common::FIGURE.replace(
+        "inertia = { ixx = 0.2, iyy = 0.2, izz = 0.01 }",
+        "inertia = { ixx = 0.2, iyy = 0.2, izz = 0.01 }\ncollision = []",
+    );
+    let model = mintorque::model::figure::parse(&none, "two.figure.toml").unwrap();
+    assert!(model.collision_capsules(arm).is_empty());
+    let bad = figure.replace("radius = 0.03", "radius = -0.03");
+    let e = mintorque::model::figure::parse(&bad, "two.figure.toml").unwrap_err().to_string();
+    assert!(e.contains("collision") && e.contains("two.figure.toml"), "{e}");
+}

@@ -1,7 +1,7 @@
 //! The bodies' collision capsules: given by the model file (a URDF's `<collision>`, a figure file's
 //! `collision`), or else derived from the drawing shapes ([`crate::geometry::capsules_of_shapes`]).
 
-use super::Model;
+use super::{Model, Shape};
 use crate::geometry::{capsules_of_shapes, Capsule};
 use crate::spatial::Transform;
 
@@ -32,17 +32,17 @@ impl Model {
         a == b || parent_solid(a) == b || parent_solid(b) == a
     }
 
-    /// When the locked body `child` of `source` merges into body `target` of `self` at `x` (child frame
-    /// in target frame): the target's given capsules gain the child's, if either had any given.
-    pub(super) fn merge_collision(&mut self, target: usize, source: &Model, child: usize, x: &Transform) {
-        let child_name = &source.bodies[child].name;
+    /// A body welded onto body `target` at `x` (its frame in the target's), before its drawing `shapes`
+    /// join the target's: when it has capsules of its own (`given`) or the target has, the target's given
+    /// capsules become both bodies' (the welded body's derived from `shapes` when not given).
+    pub(crate) fn weld_collision(&mut self, target: usize, given: Option<&[Capsule]>, shapes: &[Shape], x: &Transform) {
         let target_name = self.bodies[target].name.clone();
-        if !(source.collision.contains_key(child_name) || self.collision.contains_key(&target_name)) {
-            return;
+        if given.is_none() && !self.collision.contains_key(&target_name) {
+            return; // derived from the merged drawing shapes, as before
         }
         let mut merged = self.collision_capsules(target);
-        merged.extend(source.collision_capsules(child).iter().map(|c| c.transformed(x)));
-        self.collision.remove(child_name);
+        let welded = given.map_or_else(|| capsules_of_shapes(shapes), <[Capsule]>::to_vec);
+        merged.extend(welded.iter().map(|c| c.transformed(x)));
         self.collision.insert(target_name, merged);
     }
 }

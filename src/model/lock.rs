@@ -24,7 +24,9 @@ impl Model {
             match locks.iter().find(|(dof, _)| *dof == i - 1) {
                 Some(&(_, value)) => {
                     let x = placement.compose(&joint_transform(joint.kind, &joint.axis, value));
-                    out.merge_collision(new_index[p], self, i, &x);
+                    let child = &self.bodies[i];
+                    let given = out.collision.remove(&child.name);
+                    out.weld_collision(new_index[p], given.as_deref(), &child.shapes, &x);
                     let target = &mut out.bodies[new_index[p]];
                     target.inertia = target.inertia.merged(&self.bodies[i].inertia.transformed(&x));
                     target.shapes.extend(self.bodies[i].shapes.iter().map(|s| s.transformed(&x)));
