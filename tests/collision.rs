@@ -469,3 +469,22 @@ fn a_figure_file_gives_or_removes_collision_shapes() {
     let e = mintorque::model::figure::parse(&bad, "two.figure.toml").unwrap_err().to_string();
     assert!(e.contains("collision") && e.contains("two.figure.toml"), "{e}");
 }
+
+#[test]
+fn the_cli_refuses_a_start_inside_the_bar_with_exit_1() {
+    let dir = std::env::temp_dir().join(format!("mintorque-collision-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let task = dir.join("dip.toml");
+    std::fs::write(&task, dip_down(&[("start = { grip = -20.0, shoulder = 20.0 }", "start = {}")])).unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_mintorque"))
+        .args(["plan", task.to_str().unwrap(), "--out", dir.join("plan").to_str().unwrap(), "--quiet"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    for part in ["dip.toml", "motion.start", "\"upper_legs\"", "\"bar\"", "penetrate by 110.0 mm"] {
+        assert!(stderr.contains(part), "{stderr:?} lacks {part:?}");
+    }
+    assert!(!dir.join("plan").exists(), "nothing planned, nothing written");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
