@@ -316,6 +316,14 @@ fn collision_pairs_naming_unknown_bodies_or_obstacles_are_refused() {
 }
 
 #[test]
+fn the_all_bodies_form_includes_every_solid_even_the_hands_on_the_bar() {
+    // Without `bodies`, every moving body with a collision shape is kept off the bar — the palms too,
+    // which hold it: the start posture is then refused, naming them.
+    let all = [("bodies = [\"upper_body\", \"lower_torso\", \"upper_legs\", \"lower_legs\"]\n", "")];
+    assert_refused(&all, &["motion.start", "\"palms\"", "\"bar\"", "penetrate by"]);
+}
+
+#[test]
 fn adjacent_bodies_cannot_be_kept_apart() {
     let with = "bodies = [\"upper_legs\"]\nwith = [\"lower_legs\"]\n";
     let edit = ("bodies = [\"upper_body\", \"lower_torso\", \"upper_legs\", \"lower_legs\"]\nobstacles = [\"bar\"]\n", with);
@@ -487,4 +495,18 @@ fn the_cli_refuses_a_start_inside_the_bar_with_exit_1() {
     }
     assert!(!dir.join("plan").exists(), "nothing planned, nothing written");
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn given_collision_capsules_survive_the_figure_file_round_trip() {
+    let model = mintorque::model::urdf::parse(URDF, "arm.urdf").unwrap();
+    let text = mintorque::model::figure::to_toml(&model);
+    let back = mintorque::model::figure::parse(&text, "arm.figure.toml").unwrap();
+    for b in 1..model.bodies.len() {
+        let (x, y) = (model.collision_capsules(b), back.collision_capsules(b));
+        assert_eq!(x.len(), y.len(), "{}", model.bodies[b].name);
+        for (p, q) in x.iter().zip(&y) {
+            assert!((p.a - q.a).norm() < 1e-9 && (p.b - q.b).norm() < 1e-9 && (p.radius - q.radius).abs() < 1e-12);
+        }
+    }
 }
