@@ -389,6 +389,15 @@ fn the_dip_down_passes_the_bar_and_would_go_through_it_unconstrained() {
     // the body stays 18 mm or more off the bar.
     assert!(kept > -2e-3, "the body comes {:.1} mm inside the margin ({at})", -kept * 1e3);
 
+    // The filmstrip draws the bar and the capsules kept off it.
+    let times = mintorque::report::sample_times(task.spec.duration, 50.0);
+    let samples = mintorque::plan::sample(&task.spec, &planned, &times).unwrap();
+    let record = mintorque::report::record::PlanRecord::new(&task.spec, &planned, &samples);
+    assert_eq!(record.obstacles.len(), 1);
+    let svg = mintorque::report::filmstrip::filmstrip_svg(&task.spec.model, &record, 8, mintorque::report::filmstrip::View::Side);
+    assert_eq!(svg.matches(r#"<g class="obstacle">"#).count(), 8, "the bar in every frame");
+    assert!(svg.matches(r#"class="collision""#).count() >= 8 * 8, "the listed bodies' capsules in every frame");
+
     // The same task with the bar not solid: the motion goes through where the bar is.
     let mut free = task.spec.clone();
     free.collisions.clear();
