@@ -519,3 +519,21 @@ fn given_collision_capsules_survive_the_figure_file_round_trip() {
         }
     }
 }
+
+#[test]
+fn specs_built_in_rust_are_checked_too() {
+    let task = Task::load(&repo().join("examples/dip_down_space.toml")).unwrap();
+    let body = |name: &str| task.spec.model.bodies.iter().position(|b| b.name == name).unwrap();
+    let mut adjacent = task.spec.clone();
+    adjacent.collisions.push(Collision { body: body("upper_legs"), other: Collider::Body(body("lower_legs")), margin: 0.0 });
+    let e = mintorque::plan::validate(&adjacent, "spec").unwrap_err().to_string();
+    assert!(e.contains("adjacent") && e.contains("constraints.collision[4]"), "{e}");
+    let mut flat = task.spec.clone();
+    flat.obstacles[0].shape = ObstacleShape::Cylinder { point: Vec3::zeros(), direction: Vec3::y(), radius: 0.0, length: None };
+    let e = mintorque::plan::validate(&flat, "spec").unwrap_err().to_string();
+    assert!(e.contains("obstacle \"bar\"") && e.contains("radius"), "{e}");
+    let mut unknown = task.spec.clone();
+    unknown.collisions[0].other = Collider::Obstacle(3);
+    assert!(mintorque::plan::validate(&unknown, "spec").unwrap_err().to_string().contains("no obstacle 3"));
+    mintorque::plan::validate(&task.spec, "spec").unwrap();
+}
