@@ -385,7 +385,7 @@ fn the_dip_down_passes_the_bar_and_would_go_through_it_unconstrained() {
     assert!(planned.converged(), "{}", planned.outcome.reason);
     let (kept, at) = least_clearance(&task.spec, &planned.x, 2000);
     println!("with the bar solid: least d − margin {:.2} mm ({at})", kept * 1e3);
-    // Between the nodes a cubic may cut the margin slightly (1.3 mm at N = 16 today): 2 mm allowed, so
+    // Between the nodes a cubic may cut the margin slightly (0.3 mm at N = 16 today): 2 mm allowed, so
     // the body stays 18 mm or more off the bar.
     assert!(kept > -2e-3, "the body comes {:.1} mm inside the margin ({at})", -kept * 1e3);
 
