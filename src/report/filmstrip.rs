@@ -12,6 +12,8 @@ pub use crate::plan::task::View;
 use crate::spatial::Vec3;
 use std::fmt::Write as _;
 
+mod solids;
+
 /// Panel height the figure is scaled to (px), and the widest a panel may get.
 const FIGURE_HEIGHT: f64 = 240.0;
 const MAX_PANEL_WIDTH: f64 = 360.0;
@@ -214,7 +216,7 @@ struct Scenery {
     /// Bars and boxes as outlines.
     obstacles: Vec<Prim>,
     /// Planes seen edge-on: a point on the line and the line's direction (screen).
-    planes: Vec<([f64; 2], [f64; 2])>,
+    planes: Vec<solids::EdgeOn>,
 }
 
 fn scenery(record: &PlanRecord, view: View) -> Scenery {
@@ -224,17 +226,7 @@ fn scenery(record: &PlanRecord, view: View) -> Scenery {
         View::Front => Prim::Stick([y0, 0.0], [y1, 0.0]),
     });
     let targets = record.contacts.iter().map(|c| view.project(&Vec3::from(c.target)).0).collect();
-    let obstacles = record.obstacles.iter().filter_map(|o| o.drawing_shape()).map(|s| shape_prim(&s, view).1).collect();
-    // A plane shows as a line when its normal lies mostly in the picture: the line runs across the normal.
-    let planes = record
-        .obstacles
-        .iter()
-        .filter(|o| o.kind == "plane")
-        .filter_map(|o| {
-            let (n, _) = view.project(&Vec3::from(o.axis));
-            (n[0].hypot(n[1]) > 0.5).then(|| (view.project(&Vec3::from(o.point)).0, [-n[1], n[0]]))
-        })
-        .collect();
+    let (obstacles, planes) = solids::scenery(record, view);
     Scenery { ground: (view != View::Top).then_some(0.0), support, targets, obstacles, planes }
 }
 
@@ -387,52 +379,6 @@ impl Layout {
     /// A body part: a light shape with a dark outline, or a dark stick.
     fn part(&self, s: &mut String, k: usize, p: &Prim) {
         self.part_with(s, k, p, FILL);
-    }
-
-    /// A plane seen edge-on: a line through `at` along `along`, across the drawn region.
-    fn plane(&self, s: &mut String, k: usize, at: &[f64; 2], along: &[f64; 2]) {
-        let reach = (self.bounds[2] - self.bounds[0]).max(self.bounds[3] - self.bounds[1]);
-        let clip = |p: [f64; 2]| [p[0].clamp(self.bounds[0], self.bounds[2]), p[1].clamp(self.bounds[1], self.bounds[3])];
-        let end = |sign: f64| clip([at[0] + sign * reach * along[0], at[1] + sign * reach * along[1]]);
-        let ([ax, ay], [bx, by]) = (self.px(k, &end(-1.0)), self.px(k, &end(1.0)));
-        let _ = writeln!(
-            s,
-            r#"<line class="obstacle" x1="{ax:.2}" y1="{ay:.2}" x2="{bx:.2}" y2="{by:.2}" stroke="{OBSTACLE}" stroke-width="3"/>"#
-        );
-    }
-
-    /// An obstacle's outline to scale; one smaller than 6 px across (a thin bar seen end-on) also gets a
-    /// ring 5 px in radius so that it shows around what covers it.
-    fn obstacle(&self, s: &mut String, k: usize, p: &Prim) {
-        self.part_with(s, k, p, OBSTACLE);
-        let [u0, v0, u1, v1] = p.bounds();
-        if (u1 - u0).max(v1 - v0) * self.scale < 6.0 {
-            let [x, y] = self.px(k, &[(u0 + u1) / 2.0, (v0 + v1) / 2.0]);
-            let _ = writeln!(s, r#"<circle cx="{x:.2}" cy="{y:.2}" r="5.5" fill="none" stroke="{OBSTACLE}" stroke-width="2"/>"#);
-        }
-    }
-
-    /// A collision capsule's outline, dashed: two sides and two half circles (a sphere: a circle).
-    fn collision_outline(&self, s: &mut String, k: usize, p: &Prim) {
-        let Prim::Capsule(a, b, r) = p else { return };
-        let ([ax, ay], [bx, by], r) = (self.px(k, a), self.px(k, b), r * self.scale);
-        let len = (bx - ax).hypot(by - ay);
-        let (ux, uy) = if len > 1e-9 { ((bx - ax) / len, (by - ay) / len) } else { (1.0, 0.0) };
-        let (nx, ny) = (-uy * r, ux * r);
-        let _ = writeln!(
-            s,
-            r#"<path class="collision" d="M{:.2},{:.2} L{:.2},{:.2} A{r:.2},{r:.2} 0 0 0 {:.2},{:.2} L{:.2},{:.2} A{r:.2},{r:.2} 0 0 0 {:.2},{:.2} Z" fill="none" stroke="{COLLISION}" stroke-width="1" stroke-dasharray="3,2"/>"#,
-            ax + nx,
-            ay + ny,
-            bx + nx,
-            by + ny,
-            bx - nx,
-            by - ny,
-            ax - nx,
-            ay - ny,
-            ax + nx,
-            ay + ny
-        );
     }
 
     /// [`Layout::part`] in the colour `fill`.
