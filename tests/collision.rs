@@ -537,3 +537,26 @@ fn specs_built_in_rust_are_checked_too() {
     assert!(mintorque::plan::validate(&unknown, "spec").unwrap_err().to_string().contains("no obstacle 3"));
     mintorque::plan::validate(&task.spec, "spec").unwrap();
 }
+
+#[test]
+fn a_thin_plate_becomes_a_bounded_number_of_capsules_without_gaps() {
+    use mintorque::geometry::capsules_of_shapes;
+    use mintorque::model::Shape;
+    use mintorque::spatial::Transform;
+    // Found by the URDF fuzzer: a 1000 m × 1000 m plate of no thickness once asked for infinitely many.
+    let plate = Shape::Box { origin: Transform::IDENTITY, size: Vec3::new(1000.0, 1000.0, 0.0) };
+    let caps = capsules_of_shapes(&[plate]);
+    assert_eq!(caps.len(), 16);
+    // Every point of the plate is inside some capsule, but for the rounded-off ends (beyond the segments,
+    // 500 − 31.25 m out): no gaps between the capsules.
+    let mut rng = Rng(9);
+    for _ in 0..1000 {
+        let p = Vec3::new(rng.uniform(-468.0, 468.0), rng.uniform(-500.0, 500.0), 0.0);
+        let point = Capsule { a: p, b: p, radius: 0.0 };
+        let inside = caps.iter().any(|c| capsule_capsule(c, &point).distance <= 1e-9);
+        assert!(inside, "{p:?} is in no capsule");
+    }
+    let urdf = URDF.replace(r#"<cylinder radius="0.05" length="0.4"/>"#, r#"<box size="1000 1000 0"/>"#);
+    let model = mintorque::model::urdf::parse(&urdf, "arm.urdf").unwrap();
+    assert_eq!(model.collision_capsules(1).len(), 16);
+}

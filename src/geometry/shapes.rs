@@ -5,12 +5,17 @@ use super::Capsule;
 use crate::model::Shape;
 use crate::spatial::Vec3;
 
+/// The most capsules a box becomes.
+pub const MAX_BOX_CAPSULES: usize = 16;
+
 /// The capsules standing for `shapes` (body frame):
 /// - a capsule is itself, a sphere a capsule of zero length;
 /// - a cylinder of radius `r` and length `L` the capsule of radius `r` along its whole axis (it reaches `r`
 ///   past each flat end: limbs meet round at the joints);
-/// - a box of edges `L ≥ M ≥ S` becomes `⌈M/S⌉` parallel capsules of radius `S/2` along its longest
-///   axis, spread across `M`, each ending where the box does (inside the box; its edges are rounded off).
+/// - a box of edges `L ≥ M ≥ S` becomes `n = ⌈M/S⌉` parallel capsules of radius `S/2` along its longest
+///   axis, spread across `M`, each ending where the box does (inside the box; its edges are rounded off) —
+///   at most [`MAX_BOX_CAPSULES`]: a plate thinner than `M/16` gets 16 capsules of radius `M/32` instead,
+///   thicker than the plate but leaving no gaps.
 pub fn capsules_of_shapes(shapes: &[Shape]) -> Vec<Capsule> {
     let mut out = Vec::new();
     for shape in shapes {
@@ -26,9 +31,9 @@ pub fn capsules_of_shapes(shapes: &[Shape]) -> Vec<Capsule> {
                 let mut axes = [0usize, 1, 2];
                 axes.sort_by(|&i, &j| size[j].total_cmp(&size[i]));
                 let [l, m, s] = axes;
-                let radius = size[s] / 2.0;
+                let count = ((size[m] / size[s]).ceil().min(MAX_BOX_CAPSULES as f64) as usize).max(1);
+                let radius = (size[s] / 2.0).max(size[m] / (2.0 * count as f64));
                 let reach = (size[l] / 2.0 - radius).max(0.0);
-                let count = ((size[m] / size[s]).ceil() as usize).max(1);
                 let spread = (size[m] / 2.0 - radius).max(0.0);
                 for k in 0..count {
                     // offsets evenly from −spread to +spread across the middle axis
