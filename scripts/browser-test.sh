@@ -26,7 +26,7 @@ cargo build --release --bin mintorque
 # Plan directories go beside the screenshots, so that a failure can be looked at afterwards.
 artifacts="$repo/target/browser-artifacts"
 mkdir -p "$artifacts"
-for task in pendulum double_pendulum weight_lift_earth; do
+for task in pendulum double_pendulum weight_lift_earth dip_down_space; do
     echo "+ mintorque plan examples/$task.toml"
     rm -rf "$artifacts/plan-$task"
     cargo run --release --quiet --bin mintorque -- plan "examples/$task.toml" --out "$artifacts/plan-$task" --quiet
@@ -38,5 +38,5 @@ cargo test --release --test viewer writes_pages_for_the_browser_test
 echo "+ node tests/browser/viewer.mjs"
 ARTIFACTS_DIR="$artifacts" node tests/browser/viewer.mjs \
     "$artifacts/plan-pendulum/motion.html" "$artifacts/plan-double_pendulum/motion.html" \
-    "$artifacts/plan-weight_lift_earth/motion.html" \
+    "$artifacts/plan-weight_lift_earth/motion.html" "$artifacts/plan-dip_down_space/motion.html" \
     "$artifacts/synthetic-human/motion.html" "$artifacts/synthetic-double-pendulum/motion.html"

@@ -70,6 +70,7 @@
 
 pub mod dynamics;
 pub mod error;
+pub mod geometry;
 pub mod model;
 pub mod plan;
 pub mod plan_dir;

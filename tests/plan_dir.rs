@@ -45,6 +45,8 @@ fn contents(amplitude: f64, contact: bool, plots: bool) -> PlanContents {
         lambda_ctrl: vec![],
         contacts,
         support: None,
+        obstacles: vec![],
+        collision_shapes: vec![],
         converged: true,
         multipliers: None,
         samples,

@@ -46,6 +46,8 @@ fn record(model: &Model, times: &[f64], motion: impl Fn(usize, f64) -> [f64; 4])
         lambda_ctrl: vec![],
         contacts: vec![],
         support: None,
+        obstacles: vec![],
+        collision_shapes: vec![],
         converged: true,
         multipliers: None,
         samples,

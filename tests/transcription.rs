@@ -4,8 +4,12 @@
 mod common;
 
 use common::{random_tree, Rng};
+use mintorque::geometry::Capsule;
 use mintorque::model::{Frame, JointLimits, Passive};
-use mintorque::plan::{Balance, Contact, ContactKind, EndCondition, FrameGoal, Orientation, PointLoad, Spec, Transcription};
+use mintorque::plan::{
+    Balance, Collider, Collision, Contact, ContactKind, EndCondition, FrameGoal, Obstacle, ObstacleShape, Orientation, PointLoad,
+    Spec, Transcription,
+};
 use mintorque::solve::{Evaluation, Problem};
 use mintorque::spatial::{Transform, Vec3};
 
@@ -29,6 +33,11 @@ fn random_spec(seed: u64, n: usize, zero_end_velocity: bool) -> Spec {
         placement: Transform::from_translation(Vec3::new(-0.2, 0.0, 0.1)),
     });
     let (hand_f, grip_f) = (model.frames.len() - 2, model.frames.len() - 1);
+    // Solids: a capsule on every body (kept off a floor and a bar below, and the last body off the first).
+    for b in 1..model.bodies.len() {
+        let (a, e) = (Vec3::new(rng.uniform(-0.2, 0.2), 0.1, 0.0), Vec3::new(0.0, rng.uniform(-0.2, 0.2), -0.3));
+        model.collision.insert(model.bodies[b].name.clone(), vec![Capsule { a, b: e, radius: 0.05 }]);
+    }
     let start = rng.vec(n, -0.8, 0.8);
     let goal = rng.vec(n, -0.8, 0.8);
     let mut spec = Spec::new(model, start, goal, 1.3);
@@ -68,6 +77,21 @@ fn random_spec(seed: u64, n: usize, zero_end_velocity: bool) -> Spec {
     spec.balance = Some(Balance { x: [-0.1, 0.2], y: [-0.15, 0.15], ground_z: -0.05 });
     spec.loads = vec![PointLoad { frame: grip_f, force: Vec3::new(3.0, -2.0, -20.0) }];
     spec.gravity = Vec3::new(0.0, 0.0, -9.81);
+    spec.obstacles = vec![
+        Obstacle { name: "floor".into(), shape: ObstacleShape::Plane { point: Vec3::new(0.0, 0.0, -1.5), normal: Vec3::z() } },
+        Obstacle {
+            name: "bar".into(),
+            shape: ObstacleShape::Cylinder { point: Vec3::new(0.2, 0.0, -1.0), direction: Vec3::y(), radius: 0.02, length: None },
+        },
+    ];
+    for b in 1..=n {
+        for o in 0..2 {
+            spec.collisions.push(Collision { body: b, other: Collider::Obstacle(o), margin: 0.01 });
+        }
+    }
+    if n > 2 && !spec.model.adjacent_solids(n, 1) {
+        spec.collisions.push(Collision { body: n, other: Collider::Body(1), margin: 0.01 });
+    }
     spec
 }
 

@@ -66,6 +66,8 @@ fn record(model: &Model, duration: f64, n: usize, amplitude: f64, contact_frames
         ctrl: vec![],
         lambda_ctrl: vec![],
         support: (!contacts.is_empty()).then_some([[-0.05, 0.25], [-0.15, 0.15]]),
+        obstacles: vec![],
+        collision_shapes: vec![],
         contacts,
         converged: true,
         multipliers: None,

@@ -13,6 +13,7 @@ impl Model {
         out.gravity = self.gravity;
         out.bodies[0].inertia = self.bodies[0].inertia;
         out.bodies[0].shapes = self.bodies[0].shapes.clone();
+        out.collision = self.collision.clone();
         // For each old body: the new body it belongs to, and its frame in that body's frame.
         let mut new_index = vec![0usize; nb];
         let mut in_body = vec![Transform::IDENTITY; nb];
@@ -23,6 +24,9 @@ impl Model {
             match locks.iter().find(|(dof, _)| *dof == i - 1) {
                 Some(&(_, value)) => {
                     let x = placement.compose(&joint_transform(joint.kind, &joint.axis, value));
+                    let child = &self.bodies[i];
+                    let given = out.collision.remove(&child.name);
+                    out.weld_collision(new_index[p], given.as_deref(), &child.shapes, &x);
                     let target = &mut out.bodies[new_index[p]];
                     target.inertia = target.inertia.merged(&self.bodies[i].inertia.transformed(&x));
                     target.shapes.extend(self.bodies[i].shapes.iter().map(|s| s.transformed(&x)));

@@ -9,6 +9,7 @@
 //! a chain of revolutes joined by massless bodies, each revolute remembering its anatomical `group`.
 //! Closed loops are cut open here and closed again by constraints in the planner.
 
+pub mod collision;
 pub mod figure;
 pub mod human;
 pub mod lock;
@@ -209,6 +210,9 @@ pub struct Model {
     pub frames: Vec<Frame>,
     /// Default gravity in the world frame (m/s²); tasks may override it.
     pub gravity: Vec3,
+    /// Collision capsules given by the model file (body name → capsules, body frame); a body not listed
+    /// takes them from its drawing shapes ([`Model::collision_capsules`]).
+    pub collision: std::collections::BTreeMap<String, Vec<crate::geometry::Capsule>>,
 }
 
 impl Model {
@@ -230,6 +234,7 @@ impl Model {
             bodies: vec![Body { name: root_name.clone(), inertia: Inertia::ZERO, shapes: vec![] }],
             frames: vec![Frame { name: root_name, body: 0, placement: Transform::IDENTITY }],
             gravity: Vec3::new(0.0, 0.0, -9.81),
+            collision: Default::default(),
         }
     }
 

@@ -9,6 +9,7 @@ mod multistart;
 mod refine;
 mod run;
 pub mod simulate;
+mod solids;
 pub mod spec;
 pub mod task;
 pub mod transcription;
@@ -18,7 +19,10 @@ pub use ik::close_loop;
 pub use multistart::{next_signed, MultiStart, StartReport};
 pub use refine::{last_change, plan_refined, Level, Refinement};
 pub use run::{plan, plan_with_starts};
-pub use spec::{Balance, Contact, ContactKind, EndCondition, FrameGoal, InitialGuess, Objective, Orientation, PointLoad, Spec};
+pub use spec::{
+    Balance, Collider, Collision, Contact, ContactKind, EndCondition, FrameGoal, InitialGuess, Objective, Obstacle,
+    ObstacleShape, Orientation, PointLoad, Spec,
+};
 pub use transcription::{NodeValues, Transcription};
 
 use crate::error::{Error, Result};
@@ -170,7 +174,7 @@ pub fn validate(spec: &Spec, origin: &str) -> Result<()> {
             return err("constraints.balance", "the support rectangle must have min < max in x and y".into());
         }
     }
-    Ok(())
+    solids::validate(spec, origin)
 }
 
 /// The worst scaled violation on a grid of `per_span` evenly spaced times per knot span (ends included).

@@ -2,6 +2,7 @@
 //! radians, every default applied. The task file (`task.rs`) produces one; Rust users can build one
 //! directly. Everything downstream (transcription, solvers, reports) reads only this.
 
+pub use crate::geometry::{Obstacle, ObstacleShape};
 use crate::model::Model;
 use crate::spatial::Vec3;
 
@@ -92,6 +93,27 @@ pub struct PointLoad {
     pub frame: usize,
     /// The force (N), world axes.
     pub force: Vec3,
+}
+
+/// What a body keeps its distance from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Collider {
+    /// `obstacles[i]` of the spec.
+    Obstacle(usize),
+    /// Another body (`model.bodies[i]`), not adjacent to the first.
+    Body(usize),
+}
+
+/// A distance constraint: every collision capsule of `body` stays at least `margin` (m) from `other`
+/// (signed distance `d(q) ≥ margin`, at the quadrature nodes and on the dense check).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Collision {
+    /// `model.bodies` index of the body.
+    pub body: usize,
+    /// The obstacle or body it keeps away from.
+    pub other: Collider,
+    /// Least distance (m), ≥ 0.
+    pub margin: f64,
 }
 
 /// What the plan minimises.
@@ -204,6 +226,10 @@ pub struct Spec {
     pub loads: Vec<PointLoad>,
     /// The solver's starting point.
     pub initial_guess: InitialGuess,
+    /// Obstacles fixed in the world (bars, floors, tables).
+    pub obstacles: Vec<Obstacle>,
+    /// Distance constraints between bodies and obstacles or other bodies.
+    pub collisions: Vec<Collision>,
 }
 
 /// How a task-space goal constrains the frame's orientation.
@@ -250,7 +276,7 @@ impl Spec {
 
     /// A problem with the task file's defaults (`docs/task-file.md`): the model's position and effort
     /// limits enforced, `q̇ = 0` at both ends, the torque objective with unit weights, N = 16 control points
-    /// with 4 Gauss–Legendre nodes per span, a linear initial guess, no contacts, balance or loads, and the
+    /// with 4 Gauss–Legendre nodes per span, a linear initial guess, no contacts, balance, loads, obstacles or collision constraints, and the
     /// model's gravity (earth, `[0, 0, −9.81]` m/s², unless the model says otherwise). Set
     /// `position_limits`/`torque_limits` to `false` for an unconstrained problem.
     pub fn new(model: Model, start: Vec<f64>, goal: Vec<f64>, duration: f64) -> Spec {
@@ -275,6 +301,8 @@ impl Spec {
             balance: None,
             loads: vec![],
             initial_guess: InitialGuess::Linear,
+            obstacles: vec![],
+            collisions: vec![],
         }
     }
 }

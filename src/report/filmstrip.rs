@@ -12,6 +12,8 @@ pub use crate::plan::task::View;
 use crate::spatial::Vec3;
 use std::fmt::Write as _;
 
+mod solids;
+
 /// Panel height the figure is scaled to (px), and the widest a panel may get.
 const FIGURE_HEIGHT: f64 = 240.0;
 const MAX_PANEL_WIDTH: f64 = 360.0;
@@ -26,6 +28,8 @@ const OUTLINE: &str = "#2b3a4a";
 const STICK: &str = "#2b3a4a";
 const FORCE: &str = "#d0302a";
 const SUPPORT: &str = "#2a7de1";
+const OBSTACLE: &str = "#b08d5b";
+const COLLISION: &str = "#d0302a";
 
 /// One thing to draw, in screen metres (right, up), before scaling.
 #[derive(Clone, Debug)]
@@ -60,6 +64,8 @@ struct Pose {
     joints: Vec<([f64; 2], String)>,
     /// Contact frame point and the force on the figure (screen axes, N).
     forces: Vec<([f64; 2], [f64; 2])>,
+    /// The collision capsules of the bodies kept off obstacles, drawn translucent over the figure.
+    collision: Vec<Prim>,
 }
 
 /// The filmstrip as SVG: `frames` poses at `t = k·T/(frames − 1)` (one pose at t = 0 when `frames` is 1;
@@ -93,6 +99,8 @@ struct Poser<'a> {
     sticks: Vec<Vec<[Vec3; 2]>>,
     markers: Vec<JointMarker>,
     peak: f64,
+    /// Collision capsules (body index, capsule in the body frame).
+    capsules: Vec<(usize, Shape)>,
 }
 
 impl<'a> Poser<'a> {
@@ -104,6 +112,11 @@ impl<'a> Poser<'a> {
             sticks: scene::sticks(model),
             markers: scene::joint_markers(model),
             peak: scene::peak_torque(record),
+            capsules: record
+                .collision_shapes
+                .iter()
+                .filter_map(|c| model.bodies.iter().position(|b| b.name == c.body).map(|b| (b, c.shape())))
+                .collect(),
         }
     }
 
@@ -127,7 +140,8 @@ impl<'a> Poser<'a> {
             .map(|m| (view.project(&oms[m.body].translation).0, scene::load_colour(scene::load_ratio(m, &tau, self.peak))))
             .collect();
         let forces = forces_at(model, self.record, data, t, view);
-        Pose { t, parts: parts.into_iter().map(|(_, p)| p).collect(), joints, forces }
+        let collision = self.capsules.iter().map(|(b, c)| shape_prim(&c.transformed(&oms[*b]), view).1).collect();
+        Pose { t, parts: parts.into_iter().map(|(_, p)| p).collect(), joints, forces, collision }
     }
 }
 
@@ -193,12 +207,16 @@ fn convex_hull(mut pts: Vec<[f64; 2]>) -> Vec<[f64; 2]> {
     hull
 }
 
-/// What stays put in every panel: the ground, the support region and the contact targets.
+/// What stays put in every panel: the ground, the support region, the contact targets and the obstacles.
 struct Scenery {
     /// Height of the ground line (side and front views).
     ground: Option<f64>,
     support: Option<Prim>,
     targets: Vec<[f64; 2]>,
+    /// Bars and boxes as outlines.
+    obstacles: Vec<Prim>,
+    /// Planes seen edge-on: a point on the line and the line's direction (screen).
+    planes: Vec<solids::EdgeOn>,
 }
 
 fn scenery(record: &PlanRecord, view: View) -> Scenery {
@@ -208,7 +226,8 @@ fn scenery(record: &PlanRecord, view: View) -> Scenery {
         View::Front => Prim::Stick([y0, 0.0], [y1, 0.0]),
     });
     let targets = record.contacts.iter().map(|c| view.project(&Vec3::from(c.target)).0).collect();
-    Scenery { ground: (view != View::Top).then_some(0.0), support, targets }
+    let (obstacles, planes) = solids::scenery(record, view);
+    Scenery { ground: (view != View::Top).then_some(0.0), support, targets, obstacles, planes }
 }
 
 /// Where the panels go: one common scale, every pose's panel as large as the union of all of them, in one
@@ -233,6 +252,7 @@ impl Layout {
         }
         scenery.support.iter().for_each(|p| grow(p.bounds()));
         scenery.targets.iter().for_each(|p| grow([p[0], p[1], p[0], p[1]]));
+        scenery.obstacles.iter().for_each(|p| grow(p.bounds()));
         if !b[0].is_finite() {
             b = [-0.5, -0.5, 0.5, 0.5];
         }
@@ -325,9 +345,13 @@ impl Layout {
             let _ =
                 writeln!(s, r#"<path d="M{:.2},{:.2}l8,8m0,-8l-8,8" stroke="{FORCE}" stroke-width="1.5"/>"#, x - 4.0, y - 4.0);
         }
+        for (at, along) in &scenery.planes {
+            self.plane(s, k, at, along);
+        }
         for p in &pose.parts {
             self.part(s, k, p);
         }
+        pose.collision.iter().for_each(|p| self.collision_outline(s, k, p));
         for (p, colour) in &pose.joints {
             let [x, y] = self.px(k, p);
             let _ = writeln!(
@@ -338,6 +362,10 @@ impl Layout {
         for (at, f) in &pose.forces {
             self.arrow(s, k, at, f, per_newton);
         }
+        // Obstacles last: a bar the hands hold shows over them and their joint markers.
+        let _ = writeln!(s, r#"<g class="obstacle">"#);
+        scenery.obstacles.iter().for_each(|p| self.obstacle(s, k, p));
+        s.push_str("</g>\n");
         let _ = writeln!(
             s,
             r##"<text class="time" x="{:.2}" y="{:.2}" font-family="{FONT}" font-size="14" text-anchor="middle" fill="#1d2733">t = {:.decimals$} s</text>"##,
@@ -350,12 +378,17 @@ impl Layout {
 
     /// A body part: a light shape with a dark outline, or a dark stick.
     fn part(&self, s: &mut String, k: usize, p: &Prim) {
+        self.part_with(s, k, p, FILL);
+    }
+
+    /// [`Layout::part`] in the colour `fill`.
+    fn part_with(&self, s: &mut String, k: usize, p: &Prim, fill: &str) {
         const WIDTH: f64 = 1.2;
         match p {
             Prim::Polygon(pts) => {
                 let _ = writeln!(
                     s,
-                    r#"<polygon points="{}" fill="{FILL}" stroke="{OUTLINE}" stroke-width="{WIDTH}" stroke-linejoin="round"/>"#,
+                    r#"<polygon points="{}" fill="{fill}" stroke="{OUTLINE}" stroke-width="{WIDTH}" stroke-linejoin="round"/>"#,
                     self.points(k, pts)
                 );
             }
@@ -363,7 +396,7 @@ impl Layout {
                 // An outlined thick line: a dark line a little wider under the fill-coloured one.
                 let ([ax, ay], [bx, by]) = (self.px(k, a), self.px(k, b));
                 let w = 2.0 * r * self.scale;
-                for (colour, w) in [(OUTLINE, w + 2.0 * WIDTH), (FILL, w)] {
+                for (colour, w) in [(OUTLINE, w + 2.0 * WIDTH), (fill, w)] {
                     let _ = writeln!(
                         s,
                         r#"<line x1="{ax:.2}" y1="{ay:.2}" x2="{bx:.2}" y2="{by:.2}" stroke="{colour}" stroke-width="{w:.2}" stroke-linecap="round"/>"#
@@ -374,7 +407,7 @@ impl Layout {
                 let [x, y] = self.px(k, c);
                 let _ = writeln!(
                     s,
-                    r#"<circle cx="{x:.2}" cy="{y:.2}" r="{:.2}" fill="{FILL}" stroke="{OUTLINE}" stroke-width="{WIDTH}"/>"#,
+                    r#"<circle cx="{x:.2}" cy="{y:.2}" r="{:.2}" fill="{fill}" stroke="{OUTLINE}" stroke-width="{WIDTH}"/>"#,
                     r * self.scale
                 );
             }

@@ -71,6 +71,13 @@ pub struct PlanRecord {
     pub contacts: Vec<ContactRecord>,
     /// Support rectangle of a balance constraint, `[[x_min, x_max], [y_min, y_max]]` (m).
     pub support: Option<[[f64; 2]; 2]>,
+    /// The task's obstacles; absent in older files.
+    #[serde(default)]
+    pub obstacles: Vec<super::solids::ObstacleRecord>,
+    /// The collision capsules of the bodies the collision constraints name (body frame); absent in older
+    /// files.
+    #[serde(default)]
+    pub collision_shapes: Vec<super::solids::CapsuleRecord>,
     /// Whether the solver converged.
     pub converged: bool,
     /// The Lagrange multipliers at the plan (problem units), for a warm start; absent in older files.
@@ -108,6 +115,8 @@ impl PlanRecord {
                 })
                 .collect(),
             support: spec.balance.as_ref().map(|b| [b.x, b.y]),
+            obstacles: super::solids::obstacle_records(spec),
+            collision_shapes: super::solids::capsule_records(spec),
             converged: plan.converged(),
             multipliers: Some(plan.outcome.multipliers.clone()),
             samples: samples.iter().map(SampleRecord::from).collect(),

@@ -109,6 +109,12 @@ pub fn scene_json(model: &Model, record: &PlanRecord, summary: Value) -> Value {
         })).collect::<Vec<_>>(),
         "contacts": record.contacts,
         "support": record.support,
+        "obstacles": record.obstacles.iter().map(|o| json!({
+            "name": o.name, "kind": o.kind, "point": o.point, "normal": o.axis,
+            "shape": o.drawing_shape().as_ref().map(shape_json),
+        })).collect::<Vec<_>>(),
+        "collision": model.bodies.iter().map(|b| record.collision_shapes.iter().filter(|c| c.body == b.name)
+            .map(|c| shape_json(&c.shape())).collect::<Vec<_>>()).collect::<Vec<_>>(),
         "floor_z": bounds.min.z.min(0.0),
         "center": v3(&center),
         "extent": extent,

@@ -135,6 +135,16 @@ try {
     if (n === 0) fs.copyFileSync(shot, path.join(artifacts, 'viewer.png'));
     console.log(`     screenshot ${shot}`);
 
+    // Obstacles: every declared one drawn; a plan that names obstacles (the dip-down's bar) shows them and
+    // the collision capsules of the bodies kept off them.
+    const declared = await page.evaluate(() => window.mintorque.declaredObstacles);
+    const drawn = await page.evaluate(() => window.mintorque.drawnObstacles());
+    check(`${name}: every obstacle drawn`, declared.every((o) => drawn.includes(o)), `declared ${declared.join(', ') || 'none'}; drawn ${drawn.join(', ') || 'none'}`);
+    if (name.includes('dip_down')) {
+      check(`${name}: the bar is drawn`, drawn.includes('bar'));
+      const capsules = await page.evaluate(() => window.mintorque.collisionShapes());
+      check(`${name}: collision capsules drawn`, capsules > 0, `${capsules} capsules`);
+    }
     check(`${name}: no console errors`, errors.length === 0, errors.join(' | '));
     check(`${name}: nothing fetched from the network`, external.length === 0, external.join(' '));
     await page.close();

@@ -78,6 +78,14 @@ fn write_body(out: &mut String, model: &Model, start: usize, end: usize, anatomi
     let parent = &model.bodies[j.parent].name;
     let _ = writeln!(out, "\n[[body]]\nname = {}\nparent = {}", quote(&b.name), quote(parent));
     write_mass(out, b);
+    // Collision capsules the model file gave (the others follow from the shapes again when read).
+    if let Some(capsules) = model.collision.get(&b.name) {
+        let _ = writeln!(out, "collision = [");
+        for c in capsules {
+            let _ = writeln!(out, "  {},", shape(&Shape::Capsule { a: c.a, b: c.b, radius: c.radius }));
+        }
+        let _ = writeln!(out, "]");
+    }
     let _ = writeln!(out, "\n[body.joint]");
     if anatomical {
         let group = j.group.as_deref().unwrap_or_default();

@@ -171,6 +171,7 @@ impl<'d, 'a> Builder<'d, 'a> {
             return Err(self.err(&path, "missing field `mass` (kg; write mass = 0 for a massless link)"));
         };
         let (inertia, shapes) = self.mass_properties(&path, raw, mass)?;
+        let collision = self.collision(&path, raw)?;
         let Some(joint) = &raw.joint else {
             return Err(self.err(&path, "missing field `joint` (how the body hangs from its parent)"));
         };
@@ -192,6 +193,7 @@ impl<'d, 'a> Builder<'d, 'a> {
         };
         self.check_fields(&jpath, joint, context)?;
         if kind == RawJointType::Fixed {
+            self.model.weld_collision(parent, collision.as_deref(), &body.shapes, &placement);
             return self.weld(b, body, parent, placement);
         }
         let Some(name) = joint.name.clone() else {
@@ -207,6 +209,9 @@ impl<'d, 'a> Builder<'d, 'a> {
                 self.model.add_body(j, body)
             }
         };
+        if let Some(capsules) = collision {
+            self.model.collision.insert(raw.name.clone(), capsules);
+        }
         self.body_paths.push(path.clone());
         self.frame_paths.push(path);
         self.placed.insert(raw.name.as_str(), (index, Transform::IDENTITY));
@@ -316,6 +321,18 @@ impl<'d, 'a> Builder<'d, 'a> {
             None => solid.into_iter().collect(),
         };
         Ok((inertia, shapes))
+    }
+
+    /// The capsules of `collision = [...]` (each shape checked like a drawing shape), if given.
+    fn collision(&self, path: &str, raw: &RawBody) -> Result<Option<Vec<crate::geometry::Capsule>>> {
+        let Some(list) = &raw.collision else { return Ok(None) };
+        let mut shapes = Vec::with_capacity(list.len());
+        for (k, s) in list.iter().enumerate() {
+            let shape = drawing_shape(s);
+            validate::check_shape(&shape).map_err(|m| self.err(&format!("{path}.collision.{k}"), m))?;
+            shapes.push(shape);
+        }
+        Ok(Some(crate::geometry::capsules_of_shapes(&shapes)))
     }
 
     /// The solid of `shape = { ... }`, centred at the centre of mass.

@@ -36,6 +36,9 @@ pub(super) struct RawBody {
     pub(super) inertia: Option<RawInertia>,
     pub(super) shape: Option<MassShape>,
     pub(super) shapes: Option<Vec<RawShape>>,
+    /// Collision geometry (body frame, m), written like `shapes`; default: the capsules of the drawing
+    /// shapes. `collision = []`: none.
+    pub(super) collision: Option<Vec<RawShape>>,
 }
 
 /// Rotational inertia about the centre of mass, body axes, kg·m².

@@ -149,6 +149,7 @@ pub fn parse_with(text: &str, origin: &str, options: Options) -> Result<Model> {
                 UrdfKind::Fixed => {
                     let merged = model.bodies[body].inertia.merged(&l.inertia.transformed(&placement));
                     model.bodies[body].inertia = merged;
+                    model.weld_collision(body, l.collision.as_deref(), &l.shapes, &placement);
                     model.bodies[body].shapes.extend(l.shapes.iter().map(|s| s.transformed(&placement)));
                     model.frames.push(Frame { name: l.name.clone(), body, placement });
                     lines.frame.push(l.line);
@@ -169,6 +170,9 @@ pub fn parse_with(text: &str, origin: &str, options: Options) -> Result<Model> {
                     lines.joint.push(j.line);
                     lines.frame.push(l.line);
                     let b = model.add_body(joint, Body { name: l.name.clone(), inertia: l.inertia, shapes: l.shapes.clone() });
+                    if let Some(capsules) = &l.collision {
+                        model.collision.insert(l.name.clone(), capsules.clone());
+                    }
                     stack.push((child, b, Transform::IDENTITY));
                 }
             }
@@ -207,6 +211,8 @@ struct UrdfLink {
     line: u32,
     inertia: Inertia,
     shapes: Vec<Shape>,
+    /// The capsules of its `<collision>` primitives; `None` when it has none (meshes only, or nothing).
+    collision: Option<Vec<crate::geometry::Capsule>>,
 }
 
 enum UrdfKind {
@@ -338,7 +344,39 @@ impl Cx<'_, '_> {
                 }
             }
         }
-        Ok(UrdfLink { name, line: self.line(node), inertia, shapes })
+        let collision = self.collision(node, &what)?;
+        Ok(UrdfLink { name, line: self.line(node), inertia, shapes, collision })
+    }
+
+    /// The capsules of a link's `<collision>` boxes, cylinders, spheres and capsules (`<capsule radius
+    /// length>` along z, as cylinders are); meshes are skipped (not convex in general). `None` when
+    /// nothing but meshes (or nothing) is given: the link then takes its visual shapes' capsules.
+    fn collision(&self, node: Node, what: &str) -> Result<Option<Vec<crate::geometry::Capsule>>> {
+        let mut shapes = Vec::new();
+        for collision in node.children().filter(|c| c.is_element() && c.tag_name().name() == "collision") {
+            let e = format!("{what} <collision>");
+            let origin = self.origin(collision, &e)?;
+            let Some(geometry) = self.child(collision, "geometry") else { continue };
+            for g in geometry.children().filter(|c| c.is_element()) {
+                let ge = format!("{e} <{}>", g.tag_name().name());
+                let shape = match g.tag_name().name() {
+                    "box" => Shape::Box { origin, size: self.vec3(g, "size", &ge, Vec3::zeros())? },
+                    "cylinder" => {
+                        Shape::Cylinder { origin, radius: self.number(g, "radius", &ge)?, length: self.number(g, "length", &ge)? }
+                    }
+                    "capsule" => {
+                        let (radius, length) = (self.number(g, "radius", &ge)?, self.number(g, "length", &ge)?);
+                        let half = Vec3::new(0.0, 0.0, length / 2.0);
+                        Shape::Capsule { a: origin.act_point(&-half), b: origin.act_point(&half), radius }
+                    }
+                    "sphere" => Shape::Sphere { center: origin.translation, radius: self.number(g, "radius", &ge)? },
+                    _ => continue, // a mesh: skipped
+                };
+                super::validate::check_shape(&shape).map_err(|m| self.err(g, &ge, m))?;
+                shapes.push(shape);
+            }
+        }
+        Ok((!shapes.is_empty()).then(|| crate::geometry::capsules_of_shapes(&shapes)))
     }
 
     fn joint(&self, node: Node) -> Result<UrdfJoint> {

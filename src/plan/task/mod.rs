@@ -12,6 +12,7 @@ mod guess;
 mod overrides;
 mod resolve;
 pub mod schema;
+mod solids;
 mod up;
 mod view;
 

@@ -37,6 +37,8 @@ pub fn resolve(file: &TaskFile, base: &Path, origin: &str) -> Result<Spec> {
     let (objective, weights) = objective(&model, &file.objective, origin)?;
     let initial_guess = guess::initial_guess(&model, file, (&start, &goal), base, origin)?;
     let c = &file.constraints;
+    let obstacles = super::solids::obstacles(&env.obstacle, origin)?;
+    let collisions = super::solids::collisions(&model, &c.collision, &obstacles, origin)?;
     let mut spec = Spec {
         origin: origin.to_string(),
         gravity,
@@ -56,6 +58,8 @@ pub fn resolve(file: &TaskFile, base: &Path, origin: &str) -> Result<Spec> {
         balance: c.balance.as_ref().map(|b| Balance { x: b.x, y: b.y, ground_z: b.ground_z }),
         loads,
         initial_guess,
+        obstacles,
+        collisions,
         model,
     };
     super::goals::goal_postures(&mut spec, origin)?;

@@ -213,6 +213,9 @@ pub struct EnvironmentSection {
     /// Passive spring/damper per joint, overriding the model's.
     #[serde(default)]
     pub passive: BTreeMap<String, PassiveSpec>,
+    /// `[[environment.obstacle]]`: solids fixed in the world (floors, bars, tables).
+    #[serde(default)]
+    pub obstacle: Vec<ObstacleSpec>,
 }
 
 fn plus_z() -> String {
@@ -221,7 +224,14 @@ fn plus_z() -> String {
 
 impl Default for EnvironmentSection {
     fn default() -> Self {
-        EnvironmentSection { gravity: Gravity::default(), up: plus_z(), payload: vec![], force: vec![], passive: BTreeMap::new() }
+        EnvironmentSection {
+            gravity: Gravity::default(),
+            up: plus_z(),
+            payload: vec![],
+            force: vec![],
+            passive: BTreeMap::new(),
+            obstacle: vec![],
+        }
     }
 }
 
@@ -288,6 +298,9 @@ pub struct ConstraintsSection {
     pub contact: Vec<ContactSpec>,
     /// `[constraints.balance]`: keep the centre of pressure over the feet.
     pub balance: Option<BalanceSpec>,
+    /// `[[constraints.collision]]`: bodies kept at a distance from obstacles or other bodies.
+    #[serde(default)]
+    pub collision: Vec<CollisionSpec>,
 }
 
 impl Default for ConstraintsSection {
@@ -299,6 +312,7 @@ impl Default for ConstraintsSection {
             torque_limit: BTreeMap::new(),
             contact: vec![],
             balance: None,
+            collision: vec![],
         }
     }
 }
@@ -517,4 +531,55 @@ impl Default for OutputSection {
     fn default() -> Self {
         OutputSection { sample_rate: 100.0, strength: BTreeMap::new(), plots: true, filmstrip_view: side() }
     }
+}
+
+/// An `[[environment.obstacle]]`: a convex solid fixed in the world (m; `rotation` in degrees).
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ObstacleSpec {
+    /// Its name, for `[[constraints.collision]]` and reports.
+    pub name: String,
+    /// "plane", "cylinder" or "box".
+    #[serde(rename = "type")]
+    pub kind: String,
+    /// Plane: a point on it; cylinder: a point on the axis (its centre when `length` is given) (m).
+    #[serde(default, deserialize_with = "exact::option")]
+    pub point: Option<[f64; 3]>,
+    /// Plane: the outward normal (the solid side is behind it).
+    #[serde(default, deserialize_with = "exact::option")]
+    pub normal: Option<[f64; 3]>,
+    /// Cylinder: the axis direction.
+    #[serde(default, deserialize_with = "exact::option")]
+    pub direction: Option<[f64; 3]>,
+    /// Cylinder: radius (m).
+    pub radius: Option<f64>,
+    /// Cylinder: length (m); default infinite.
+    pub length: Option<f64>,
+    /// Box: centre (m).
+    #[serde(default, deserialize_with = "exact::option")]
+    pub centre: Option<[f64; 3]>,
+    /// Box: half edge lengths along its axes (m).
+    #[serde(default, deserialize_with = "exact::option")]
+    pub half_size: Option<[f64; 3]>,
+    /// Box: rotation of its axes from the world's, about world x, then y, then z (degrees); default none.
+    #[serde(default, deserialize_with = "exact::option")]
+    pub rotation: Option<[f64; 3]>,
+}
+
+/// A `[[constraints.collision]]`: every listed body at least `margin` from every listed obstacle, or
+/// from every listed body in `with` (segment–segment, non-adjacent bodies).
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CollisionSpec {
+    /// Bodies (model body names); default every moving body with a collision shape.
+    pub bodies: Option<Vec<String>>,
+    /// Obstacles (`environment.obstacle` names) they keep away from.
+    #[serde(default)]
+    pub obstacles: Vec<String>,
+    /// Other bodies they keep away from (self-collision).
+    #[serde(default)]
+    pub with: Vec<String>,
+    /// Least distance (m), default 0.
+    #[serde(default)]
+    pub margin: f64,
 }

@@ -25,6 +25,8 @@ pub enum IneqRow {
     Friction(usize, usize),
     /// Centre of pressure: 0 `x ≤ x_max`, 1 `x ≥ x_min`, 2 `y ≤ y_max`, 3 `y ≥ y_min`, 4 `f_z ≥ 0`.
     Balance(usize),
+    /// `margin − d(q) ≤ 0` for capsule pair `p` of the collision constraints (`collision.rs`).
+    Collision(usize),
 }
 
 /// The coefficients `c` of a balance row `c · W ≤ 0` in the root reaction wrench `W = [n; f]` (about the
@@ -86,8 +88,19 @@ impl Transcription<'_> {
     }
 
     /// The inequality rows of node `k` (after `eval_node(k)`): limits, contact-force signs and friction,
-    /// balance.
+    /// balance, distances between solids.
     pub(super) fn inequality_rows(&mut self, k: usize, want_jac: bool, out: &mut Evaluation) {
+        self.limit_rows(k, want_jac, out);
+        let n_ineq = self.n_ineq_node();
+        for r in 0..n_ineq {
+            if let IneqRow::Collision(p) = self.ineq_rows[r] {
+                self.collision_row(k, k * n_ineq + r, p, want_jac, out);
+            }
+        }
+    }
+
+    /// The rows of node `k` other than the collisions.
+    fn limit_rows(&mut self, k: usize, want_jac: bool, out: &mut Evaluation) {
         let nv = self.layout.nv;
         let nl = self.layout.n_lambda;
         let n_ineq = self.n_ineq_node();
@@ -150,6 +163,7 @@ impl Transcription<'_> {
                         }
                     }
                 }
+                IneqRow::Collision(_) => {}
                 IneqRow::Balance(b) => {
                     let balance = self.spec.balance.as_ref().expect("balance rows only with a balance constraint");
                     let c = balance_coefficients(b, balance);
@@ -207,6 +221,7 @@ impl Transcription<'_> {
             IneqRow::Friction(..) => format!("{} N outside the friction cone", num(raw)),
             IneqRow::Balance(4) => format!("the ground pulls the feet with {} N", num(raw)),
             IneqRow::Balance(_) => format!("{} N·m of moment beyond the support's edge", num(raw)),
+            IneqRow::Collision(p) => self.collision_violation(p, raw),
         }
     }
 }

@@ -126,7 +126,7 @@ impl Transcription<'_> {
         let mut row = g0;
         for g in 0..self.goals.info.len() {
             let basis = self.goals.info[g].basis;
-            self.goal_state(&basis);
+            self.state_at(&basis);
             for which in 0..self.goals.info[g].n_rows {
                 let mut weights = [0.0; POSITION_ROWS + 1];
                 weights[which] = 1.0;
@@ -142,12 +142,6 @@ impl Transcription<'_> {
                 row += 1;
             }
         }
-    }
-
-    /// `q(t)` at the basis into `work.q`.
-    fn goal_state(&mut self, basis: &BasisAt) {
-        let w = &mut self.work;
-        basis.eval(&self.ctrl, self.layout.nv, &mut w.q, &mut w.qd, &mut w.qdd);
     }
 
     /// Goal `g`'s row values (six position rows, then orientation) at `work.q`, and `Σ weightsᵢ ∂rowᵢ/∂q`
@@ -201,7 +195,7 @@ impl Transcription<'_> {
             if weights.iter().all(|w| *w == 0.0) {
                 continue;
             }
-            self.goal_state(&basis);
+            self.state_at(&basis);
             self.q_hessian(&mut |t: &mut Self, out: &mut [f64]| {
                 t.goal_at(g, weights, out);
             });

@@ -15,12 +15,16 @@
 //! and in `λ`, and `∂τ/∂q̈ = H(q)` does not depend on `q̇`, so `∂²φ/∂q̈² = ∂²φ/∂q̈∂q̇ = ∂²φ/∂λ² = ∂²φ/∂λ∂q̇ = 0`
 //! and the remaining blocks follow by symmetry from the `q` and `q̇` columns. The loop closures
 //! `Φ = Eᵀ(p(q) − target)` at the contact nodes add `Σ w_h ∇²Φ`, the difference of the point Jacobians
-//! along each `qᵢ`; the task-space goals' rows (`goals.rs`) the same way at their times. Position limits and contact-force signs are linear and add nothing.
+//! along each `qᵢ`; the distances between solids `margin − d(q)` at the quadrature nodes add `Σ w_g ∇²(−d)`,
+//! the difference of their exact witness-point gradients along each `qᵢ` (`collision.rs`), and the
+//! task-space goals' rows (`goals.rs`) the same way at their times. Position limits and contact-force signs
+//! are linear and add nothing.
 
 use super::constraints::{balance_coefficients, dot6};
 use super::{IneqRow, Transcription};
 use crate::dynamics::{kinematics, point_force::point_jacobian};
 use crate::solve::SymmetricMatrix;
+use crate::trajectory::bspline::BasisAt;
 
 /// Relative step of the forward differences: `ε = STEP·(1 + |zᵢ|)`, about √(machine ε).
 const STEP: f64 = 1e-7;
@@ -79,8 +83,22 @@ impl Transcription<'_> {
             for k in 0..self.contact_nodes.t.len() {
                 let rows = &weights[1][k * self.n_eq_node..(k + 1) * self.n_eq_node];
                 if rows.iter().any(|w| *w != 0.0) {
-                    self.closure_hessian(k, rows);
                     let basis = self.contact_nodes.basis[k];
+                    self.state_at(&basis);
+                    self.q_hessian(&mut |t: &mut Self, out: &mut [f64]| t.closure_gradient(rows, out));
+                    self.add_mapped(&basis, 1, target);
+                }
+            }
+        }
+        let per = self.ineq_rows.len();
+        if self.ineq_rows.iter().any(|r| matches!(r, IneqRow::Collision(_))) {
+            for k in 0..self.n_nodes() {
+                let rows = &weights[2][k * per..(k + 1) * per];
+                let collides = |(r, w): (&IneqRow, &f64)| matches!(r, IneqRow::Collision(_)) && *w != 0.0;
+                if self.ineq_rows.iter().zip(rows).any(collides) {
+                    let basis = self.nodes.basis[k];
+                    self.state_at(&basis);
+                    self.q_hessian(&mut |t: &mut Self, out: &mut [f64]| t.collision_gradient(rows, out));
                     self.add_mapped(&basis, 1, target);
                 }
             }
@@ -203,19 +221,15 @@ impl Transcription<'_> {
         *value - before
     }
 
-    /// `Σ w_h ∇²Φ` of contact node `k` into the `q` block of `hess.s` (dimension `d` as for the nodes).
-    fn closure_hessian(&mut self, k: usize, weights: &[f64]) {
-        let nv = self.layout.nv;
-        let basis = self.contact_nodes.basis[k];
-        {
-            let w = &mut self.work;
-            basis.eval(&self.ctrl, nv, &mut w.q, &mut w.qd, &mut w.qdd);
-        }
-        self.q_hessian(&mut |t: &mut Self, out: &mut [f64]| t.closure_gradient(weights, out));
+    /// `q, q̇, q̈` of the node with `basis` into `work` (for the rows of `q` only).
+    pub(super) fn state_at(&mut self, basis: &BasisAt) {
+        let w = &mut self.work;
+        basis.eval(&self.ctrl, self.layout.nv, &mut w.q, &mut w.qd, &mut w.qdd);
     }
 
-    /// The `q` block of `hess.s` (dimension `d` as for the nodes) for rows of `q` only whose weighted
-    /// gradient `gradient` writes at `work.q`: `∂²/∂qᵢ∂qⱼ` by forward differences along each `qⱼ`,
+    /// `∇²_q Σ w c` of rows that depend on `q` only (the loop closures `Φ`, the distances between solids,
+    /// the frame goals) at `work.q`, into the `q` block of `hess.s` (dimension `d` as for the nodes): forward
+    /// differences of their exact weighted gradient, which `gradient` writes at `work.q`, along each `qⱼ`,
     /// symmetrised. `work.q` is restored.
     pub(super) fn q_hessian(&mut self, gradient: &mut dyn FnMut(&mut Self, &mut [f64])) {
         let nv = self.layout.nv;
@@ -260,12 +274,7 @@ impl Transcription<'_> {
 
     /// `target += Bᵀ S B` for the node with `basis`, `S = hess.s`; `blocks` = how many of `q, q̇, q̈` the
     /// rows depend on (3 at the quadrature nodes, 1 for the closures, which have no `λ` either).
-    pub(super) fn add_mapped(
-        &mut self,
-        basis: &crate::trajectory::bspline::BasisAt,
-        blocks: usize,
-        target: &mut SymmetricMatrix,
-    ) {
+    pub(super) fn add_mapped(&mut self, basis: &BasisAt, blocks: usize, target: &mut SymmetricMatrix) {
         let (nv, nl) = (self.layout.nv, self.layout.n_lambda);
         let d = 3 * nv + nl;
         let h = &mut self.hess;

@@ -17,6 +17,7 @@
 //! defined at every time). Gradients follow eq. 33 from the engine's `∂τ/∂q`, `∂τ/∂q̇` and `H`, touching
 //! only the four non-zero basis functions at each node.
 
+pub(crate) mod collision;
 mod constraints;
 pub mod goals;
 mod hessian;
@@ -204,6 +205,7 @@ pub struct Transcription<'s> {
     limits_up: Vec<f64>,
     effort: Vec<f64>,
     total_weight: f64,
+    collisions: collision::Collisions,
     // scratch, allocated once
     data: Data,
     ctrl: Vec<f64>,
@@ -342,6 +344,8 @@ impl<'s> Transcription<'s> {
                 ineq_rows.push(IneqRow::Balance(k));
             }
         }
+        let collisions = collision::Collisions::new(spec);
+        ineq_rows.extend((0..collisions.pairs.len()).map(IneqRow::Collision));
         let load_paths = spec.loads.iter().map(|l| path_dofs(model, model.frames[l.frame].body)).collect();
         let work = NodeWork {
             q: vec![0.0; nv],
@@ -388,6 +392,7 @@ impl<'s> Transcription<'s> {
             limits_up,
             effort,
             total_weight,
+            collisions,
             work,
             hess: hessian::HessianWork::new(nv, n_lambda),
             goals,
@@ -627,6 +632,7 @@ impl Problem for Transcription<'_> {
                         .collect(),
                     IneqRow::UpperTorque(_) | IneqRow::LowerTorque(_) | IneqRow::Balance(_) => both.clone(),
                     IneqRow::Push(c) | IneqRow::Friction(c, _) => self.contact_columns(basis, c),
+                    IneqRow::Collision(_) => motion.clone(),
                 });
             }
         }
@@ -689,6 +695,7 @@ impl Problem for Transcription<'_> {
                 IneqRow::Push(_) | IneqRow::Friction(..) => self.total_weight.max(1.0),
                 IneqRow::Balance(4) => self.total_weight.max(1.0),
                 IneqRow::Balance(_) => (0.1 * self.total_weight).max(1.0),
+                IneqRow::Collision(_) => 1.0, // metres, like the contacts
             })
             .collect();
         // Goals in metres (like the contacts), their orientations as cosines.
@@ -739,6 +746,7 @@ impl Problem for Transcription<'_> {
                     IneqRow::Friction(c, _) => format!("friction cone of \"{}\"", contact(c)),
                     IneqRow::Balance(4) => "balance: feet stay loaded".to_string(),
                     IneqRow::Balance(_) => "balance: centre of pressure inside the support".to_string(),
+                    IneqRow::Collision(p) => format!("distance between {}", self.collisions.describe(self.spec, p)),
                 };
                 format!("{what} at t = {t:.3} s")
             }

@@ -1,0 +1,164 @@
+//! Distance constraints between solid bodies: for every collision capsule pair of a
+//! [`crate::plan::spec::Collision`], the row `margin − d(q) ≤ 0` at each node, `d` the signed distance of
+//! [`crate::geometry`], with its exact gradient `∂d/∂q = nᵀ(J_a(p_a) − J_b(p_b))` (the witness points'
+//! Jacobians; the envelope theorem) — obstacles do not move, so `J_b = 0` for them.
+
+use super::{Derivatives, Transcription};
+use crate::dynamics::point_force::{path_dofs, point_jacobian};
+use crate::dynamics::{kinematics, Data};
+use crate::geometry::{capsule_capsule, capsule_obstacle, Capsule, Separation};
+use crate::plan::spec::{Collider, Spec};
+use crate::spatial::Vec3;
+
+/// The other side of a capsule pair.
+#[derive(Clone, Debug)]
+enum Other {
+    /// `spec.obstacles[i]`.
+    Obstacle(usize),
+    /// A capsule (body frame) of body `body`, moved by the dofs `path`.
+    Capsule { body: usize, capsule: Capsule, path: Vec<usize> },
+}
+
+/// One capsule pair of a collision constraint, fixed for the solve.
+#[derive(Clone, Debug)]
+pub(crate) struct CapsulePair {
+    /// Index in `spec.collisions`.
+    pub constraint: usize,
+    body: usize,
+    capsule: Capsule,
+    path: Vec<usize>,
+    other: Other,
+}
+
+/// Every capsule pair of a spec and the scratch of their gradients, allocated once.
+#[derive(Clone, Debug)]
+pub(crate) struct Collisions {
+    /// The pairs, in the order of their rows at a node.
+    pub pairs: Vec<CapsulePair>,
+    jac_a: Vec<Vec3>,
+    jac_b: Vec<Vec3>,
+}
+
+impl Collisions {
+    /// The capsule pairs of `spec.collisions`: each capsule of the body against the obstacle, or against
+    /// each capsule of the other body.
+    pub fn new(spec: &Spec) -> Self {
+        let model = &spec.model;
+        let mut pairs = Vec::new();
+        for (constraint, c) in spec.collisions.iter().enumerate() {
+            let path = path_dofs(model, c.body);
+            for capsule in model.collision_capsules(c.body) {
+                let pair = |other| CapsulePair { constraint, body: c.body, capsule, path: path.clone(), other };
+                match c.other {
+                    Collider::Obstacle(o) => pairs.push(pair(Other::Obstacle(o))),
+                    Collider::Body(b) => {
+                        let other_path = path_dofs(model, b);
+                        for other in model.collision_capsules(b) {
+                            pairs.push(pair(Other::Capsule { body: b, capsule: other, path: other_path.clone() }));
+                        }
+                    }
+                }
+            }
+        }
+        let nv = model.nv();
+        Collisions { pairs, jac_a: vec![Vec3::zeros(); nv], jac_b: vec![Vec3::zeros(); nv] }
+    }
+
+    /// The separation of pair `p` at the placements in `data`.
+    pub fn separation(&self, spec: &Spec, data: &Data, p: usize) -> Separation {
+        let pair = &self.pairs[p];
+        let a = pair.capsule.transformed(&data.oMi[pair.body]);
+        match &pair.other {
+            Other::Obstacle(o) => capsule_obstacle(&a, &spec.obstacles[*o].shape),
+            Other::Capsule { body, capsule, .. } => capsule_capsule(&a, &capsule.transformed(&data.oMi[*body])),
+        }
+    }
+
+    /// `out[..nv] += s · ∂d/∂q` of pair `p` at separation `sep`: `nᵀ J_a(p_a) − nᵀ J_b(p_b)`.
+    pub fn add_gradient(&mut self, data: &Data, p: usize, sep: &Separation, s: f64, out: &mut [f64]) {
+        let pair = &self.pairs[p];
+        let jac_a = &mut self.jac_a[..pair.path.len()];
+        point_jacobian(data, &pair.path, &sep.on_a, jac_a);
+        for (col, &dof) in pair.path.iter().enumerate() {
+            out[dof] += s * sep.normal.dot(&jac_a[col]);
+        }
+        if let Other::Capsule { path, .. } = &pair.other {
+            let jac_b = &mut self.jac_b[..path.len()];
+            point_jacobian(data, path, &sep.on_b, jac_b);
+            for (col, &dof) in path.iter().enumerate() {
+                out[dof] -= s * sep.normal.dot(&jac_b[col]);
+            }
+        }
+    }
+
+    /// The two solids of pair `p`, for messages: `"lower_legs" and obstacle "bar"`.
+    pub fn describe(&self, spec: &Spec, p: usize) -> String {
+        let pair = &self.pairs[p];
+        let bodies = &spec.model.bodies;
+        let other = match &pair.other {
+            Other::Obstacle(o) => format!("obstacle \"{}\"", spec.obstacles[*o].name),
+            Other::Capsule { body, .. } => format!("body \"{}\"", bodies[*body].name),
+        };
+        format!("body \"{}\" and {other}", bodies[pair.body].name)
+    }
+}
+
+/// The closest capsule pair of `spec` in posture `q` relative to its margin: `(pair description,
+/// distance (m), margin (m))` of the pair with the least `d − margin`, or `None` without pairs.
+pub(crate) fn worst_clearance(spec: &Spec, q: &[f64]) -> Option<(String, f64, f64)> {
+    let collisions = Collisions::new(spec);
+    let mut data = Data::new(&spec.model);
+    kinematics::placements(&spec.model, &mut data, q);
+    (0..collisions.pairs.len())
+        .map(|p| {
+            let margin = spec.collisions[collisions.pairs[p].constraint].margin;
+            (p, collisions.separation(spec, &data, p).distance, margin)
+        })
+        .min_by(|x, y| (x.1 - x.2).total_cmp(&(y.1 - y.2)))
+        .map(|(p, d, m)| (collisions.describe(spec, p), d, m))
+}
+
+impl Transcription<'_> {
+    /// Row `gi` = `margin − d` of capsule pair `p` at node `k` (after `eval_node(k)`: placements set).
+    pub(super) fn collision_row(&mut self, k: usize, gi: usize, p: usize, want_jac: bool, out: &mut crate::solve::Evaluation) {
+        let nv = self.layout.nv;
+        let sep = self.collisions.separation(self.spec, &self.data, p);
+        out.g[gi] = self.spec.collisions[self.collisions.pairs[p].constraint].margin - sep.distance;
+        if want_jac {
+            let (d_q, rest) = self.work.row.split_at_mut(nv);
+            let zeros = &mut rest[..nv];
+            d_q.fill(0.0);
+            zeros.fill(0.0);
+            // ∂(margin − d)/∂q = −nᵀ(J_a − J_b)
+            self.collisions.add_gradient(&self.data, p, &sep, -1.0, d_q);
+            let d = Derivatives { q: d_q, v: zeros, a: zeros, lambda: None };
+            Self::chain_rule(&self.layout, &self.nodes.basis[k], 1.0, d, out.jg.row_values_mut(gi));
+        }
+    }
+
+    /// `∂/∂q Σ_r w_r (margin − d_r)` over node rows `weights` (one per inequality row) at `work.q`, into
+    /// `out[..nv]` — the gradient the second-order term differences.
+    pub(super) fn collision_gradient(&mut self, weights: &[f64], out: &mut [f64]) {
+        out.fill(0.0);
+        kinematics::placements(&self.spec.model, &mut self.data, &self.work.q);
+        for (r, row) in self.ineq_rows.iter().enumerate() {
+            if let (super::IneqRow::Collision(p), w) = (*row, weights[r]) {
+                if w != 0.0 {
+                    let sep = self.collisions.separation(self.spec, &self.data, p);
+                    self.collisions.add_gradient(&self.data, p, &sep, -w, out);
+                }
+            }
+        }
+    }
+
+    /// A collision row's violation for a person: the depth of a penetration, or how far inside the margin.
+    pub(super) fn collision_violation(&self, p: usize, raw: f64) -> String {
+        let margin = self.spec.collisions[self.collisions.pairs[p].constraint].margin;
+        let d = margin - raw;
+        if d < 0.0 {
+            format!("penetrates by {:.1} mm (margin {:.1} mm)", -d * 1e3, margin * 1e3)
+        } else {
+            format!("{:.1} mm apart, {:.1} mm inside the {:.1} mm margin", d * 1e3, raw * 1e3, margin * 1e3)
+        }
+    }
+}
