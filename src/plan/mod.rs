@@ -2,6 +2,8 @@
 //! onto B-splines ([`transcription`]), solved by a [`crate::solve::Solver`], and returned as a [`Plan`]:
 //! the motion at any time, with an honest account of how the solve went.
 
+pub mod between;
+mod enforce;
 pub mod examples;
 mod guess;
 mod multistart;
@@ -12,6 +14,7 @@ pub mod spec;
 pub mod task;
 pub mod transcription;
 
+pub use between::{BetweenNodes, CheckNodes, NodeViolation, Tolerances};
 pub use guess::initial_x;
 pub use multistart::{MultiStart, StartReport};
 pub use refine::{last_change, plan_refined, Level, Refinement};
@@ -20,7 +23,7 @@ pub use spec::{Balance, Contact, ContactKind, InitialGuess, Objective, PointLoad
 pub use transcription::{NodeValues, Transcription};
 
 use crate::error::{Error, Result};
-use crate::solve::{self, Outcome, Problem};
+use crate::solve::Outcome;
 
 /// Which solver to use.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -66,8 +69,13 @@ pub struct Plan {
     pub initial_objective: f64,
     /// Wall-clock time of the solve (s).
     pub solve_seconds: f64,
-    /// The worst scaled constraint violation on a dense grid between the nodes, and where.
-    pub worst_between_nodes: Option<(f64, String)>,
+    /// Every row group that misses its tolerance on the dense check between the nodes
+    /// ([`between::check`]), in physical units, worst first; empty when every limit holds there.
+    pub between_nodes: Vec<NodeViolation>,
+    /// The check nodes the refinement between the nodes added ([`Spec::check_nodes`] of the last solve).
+    pub check_nodes: CheckNodes,
+    /// Rounds of that refinement.
+    pub between_rounds: usize,
     /// Every start's outcome (one entry for a single start), and which one this plan is.
     pub starts: Vec<StartReport>,
     /// Index in `starts` of this plan's start.
@@ -104,6 +112,7 @@ pub fn validate(spec: &Spec, origin: &str) -> Result<()> {
     if spec.nodes_per_span == 0 {
         return err("nodes_per_span", "must be at least 1".into());
     }
+    between::check_settings(&spec.between_nodes, origin)?;
     for (name, q) in [("start", &spec.start), ("goal", &spec.goal)] {
         if q.len() != nv {
             return err(name, format!("has {} values, the model has {nv} joints", q.len()));
@@ -213,40 +222,6 @@ pub fn close_loop(
         }
     }
     Err(format!("the contacts cannot be closed by moving the listed joints: {:.1} mm remain", residual * 1e3))
-}
-
-/// The worst scaled violation on a grid of `per_span` evenly spaced times per knot span (ends included).
-pub fn check_between_nodes(spec: &Spec, x: &[f64], per_span: usize) -> Result<Option<(f64, String)>> {
-    let count = (spec.n_ctrl - 3) * per_span; // a clamped cubic has N − 3 knot spans
-    let times: Vec<f64> = (0..=count).map(|k| spec.duration * k as f64 / count as f64).collect();
-    let mut grid = Transcription::on_grid(spec, &times)?;
-    let dims = grid.dims();
-    if dims.n_eq + dims.n_ineq == 0 {
-        return Ok(None);
-    }
-    let mut eval = solve::Evaluation::new(dims, &grid.jacobian_patterns())
-        .map_err(|e| Error::task(&spec.origin, "transcription", e.to_string()))?;
-    grid.evaluate(x, false, &mut eval).map_err(|e| Error::task(&spec.origin, "transcription", e))?;
-    let scales = grid.scales();
-    let mut worst: Option<(f64, solve::ConstraintKind, usize)> = None;
-    let mut consider = |v: f64, kind, i| {
-        if worst.is_none_or(|(w, _, _)| v > w) {
-            worst = Some((v, kind, i));
-        }
-    };
-    for (i, h) in eval.h.iter().enumerate() {
-        consider(h.abs() / scales.eq[i], solve::ConstraintKind::Equality, i);
-    }
-    for (i, g) in eval.g.iter().enumerate() {
-        consider(g.max(0.0) / scales.ineq[i], solve::ConstraintKind::Inequality, i);
-    }
-    Ok(worst.map(|(v, kind, i)| {
-        let raw = match kind {
-            solve::ConstraintKind::Equality => eval.h[i],
-            solve::ConstraintKind::Inequality => eval.g[i],
-        };
-        (v, format!("{}: {}", grid.constraint_name(kind, i), grid.violation_in_units(kind, i, raw)))
-    }))
 }
 
 /// The planned motion sampled at `times` (s).

@@ -163,11 +163,16 @@ pub struct Spec {
     pub loads: Vec<PointLoad>,
     /// The solver's starting point.
     pub initial_guess: InitialGuess,
+    /// The dense check between the nodes, its tolerances in units, and its refinement (default on).
+    pub between_nodes: crate::plan::BetweenNodes,
+    /// Extra nodes where the constraints are imposed (weight 0 in the objective); empty unless the
+    /// refinement between the nodes added some.
+    pub check_nodes: crate::plan::CheckNodes,
 }
 
 impl Spec {
     /// A problem with the task file's defaults (`docs/task-file.md`): the model's position and effort
-    /// limits enforced, `q̇ = 0` at both ends, the torque objective with unit weights, N = 16 control points
+    /// limits enforced (and checked between the nodes, refining where they miss), `q̇ = 0` at both ends, the torque objective with unit weights, N = 16 control points
     /// with 4 Gauss–Legendre nodes per span, a linear initial guess, no contacts, balance or loads, and the
     /// model's gravity (earth, `[0, 0, −9.81]` m/s², unless the model says otherwise). Set
     /// `position_limits`/`torque_limits` to `false` for an unconstrained problem.
@@ -191,6 +196,8 @@ impl Spec {
             balance: None,
             loads: vec![],
             initial_guess: InitialGuess::Linear,
+            between_nodes: crate::plan::BetweenNodes::default(),
+            check_nodes: crate::plan::CheckNodes::default(),
         }
     }
 }

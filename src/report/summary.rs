@@ -38,8 +38,8 @@ pub struct Summary {
     pub gravity_m_s2: [f64; 3],
     /// Worst scaled constraint violation at the quadrature nodes, and which constraint.
     pub worst_violation_at_nodes: Option<Violation>,
-    /// The same on a dense grid between the nodes.
-    pub worst_violation_between_nodes: Option<Violation>,
+    /// The dense check between the nodes, in physical units.
+    pub between_nodes: BetweenNodesSummary,
     /// Peak torques, per joint.
     pub joints: Vec<JointSummary>,
     /// Peak forces and drift, per contact.
@@ -74,6 +74,24 @@ pub struct Violation {
     pub constraint: String,
 }
 
+/// The dense check between the nodes (`plan::between`): what still misses its tolerance, in units.
+#[derive(Serialize, Debug, Clone)]
+pub struct BetweenNodesSummary {
+    /// Whether every limit holds within its tolerance on the dense grid.
+    pub holds: bool,
+    /// Check times per knot span.
+    pub per_span: usize,
+    /// Rounds of refinement made (check nodes added, warm re-solves).
+    pub rounds: usize,
+    /// Check nodes added by the refinement (inequality nodes, s).
+    pub check_nodes: Vec<f64>,
+    /// Loop-closure nodes added by the refinement (s).
+    pub closure_nodes: Vec<f64>,
+    /// Every row group still missing its tolerance, worst first: constraint, time (s), value, limit,
+    /// excess and tolerance in `unit`.
+    pub violations: Vec<crate::plan::NodeViolation>,
+}
+
 /// The demands of the plan on one joint.
 #[derive(Serialize, Debug, Clone)]
 pub struct JointSummary {
@@ -83,8 +101,12 @@ pub struct JointSummary {
     pub peak_abs_torque: f64,
     /// When the peak torque occurs (s).
     pub peak_time_s: f64,
-    /// The joint's effort limit, if any.
+    /// The joint's effort limit, if any (the larger direction's when they differ).
     pub torque_limit: Option<f64>,
+    /// The limit of the torque along `+axis`, if any.
+    pub torque_limit_positive: Option<f64>,
+    /// The limit of the torque along `−axis` (a magnitude), if any.
+    pub torque_limit_negative: Option<f64>,
 }
 
 /// The demands of the plan on one contact.
@@ -114,7 +136,9 @@ impl Summary {
                     name: j.name.clone(),
                     peak_abs_torque: peak,
                     peak_time_s: t,
-                    torque_limit: j.limits.effort.is_finite().then_some(j.limits.effort),
+                    torque_limit: Some(j.limits.effort_max()).filter(|e| e.is_finite()),
+                    torque_limit_positive: Some(j.limits.effort_toward(true)).filter(|e| e.is_finite()),
+                    torque_limit_negative: Some(j.limits.effort_toward(false)).filter(|e| e.is_finite()),
                 }
             })
             .collect();
@@ -164,10 +188,14 @@ impl Summary {
                 .worst_constraint
                 .as_ref()
                 .map(|c| Violation { value: o.worst_violation, constraint: c.name.clone() }),
-            worst_violation_between_nodes: plan
-                .worst_between_nodes
-                .as_ref()
-                .map(|(v, n)| Violation { value: *v, constraint: n.clone() }),
+            between_nodes: BetweenNodesSummary {
+                holds: plan.between_nodes.is_empty(),
+                per_span: spec.between_nodes.per_span,
+                rounds: plan.between_rounds,
+                check_nodes: plan.check_nodes.limits.clone(),
+                closure_nodes: plan.check_nodes.closures.clone(),
+                violations: plan.between_nodes.clone(),
+            },
             joints,
             contacts,
             starts: plan.starts.clone(),
@@ -216,7 +244,10 @@ pub fn text_table(s: &Summary) -> String {
     let width = s.joints.iter().map(|j| j.name.len()).max().unwrap_or(5).max(5);
     let _ = writeln!(out, "{:width$}  {:>12}  {:>8}  {:>10}", "joint", "peak |τ|", "at (s)", "limit");
     for j in &s.joints {
-        let limit = j.torque_limit.map(|l| format!("{l:.1}")).unwrap_or_else(|| "-".into());
+        let limit = match (j.torque_limit_negative, j.torque_limit_positive) {
+            (Some(n), Some(p)) if n != p => format!("−{n:.1}/+{p:.1}"),
+            (n, p) => j.torque_limit.or(n).or(p).map(|l| format!("{l:.1}")).unwrap_or_else(|| "-".into()),
+        };
         let _ = writeln!(out, "{:width$}  {:>12.3}  {:>8.3}  {:>10}", j.name, j.peak_abs_torque, j.peak_time_s, limit);
     }
     for c in &s.contacts {
@@ -229,14 +260,24 @@ pub fn text_table(s: &Summary) -> String {
             c.max_drift_m * 1e3
         );
     }
-    match &s.worst_violation_between_nodes {
-        Some(v) if v.value > 0.0 => {
-            let _ = writeln!(out, "worst constraint between nodes: {} (scaled {:.2e})", v.constraint, v.value);
+    let b = &s.between_nodes;
+    let added = b.check_nodes.len() + b.closure_nodes.len();
+    let refined = if b.rounds > 0 {
+        format!(", after {} round(s) of refinement adding {added} check nodes", b.rounds)
+    } else {
+        String::new()
+    };
+    if b.holds {
+        let _ = writeln!(
+            out,
+            "every limit holds between the nodes within its tolerance ({} points per knot span{refined})",
+            b.per_span
+        );
+    } else {
+        let _ = writeln!(out, "limits missed between the nodes ({} points per knot span{refined}):", b.per_span);
+        for v in &b.violations {
+            let _ = writeln!(out, "  {v}");
         }
-        Some(_) => {
-            let _ = writeln!(out, "every constraint holds between the nodes too (16 points per knot span)");
-        }
-        None => {}
     }
     out
 }

@@ -28,6 +28,7 @@ pub fn resolve(file: &TaskFile, base: &Path, origin: &str) -> Result<Spec> {
     let (objective, weights) = objective(&model, &file.objective, origin)?;
     let initial_guess = guess::initial_guess(&model, file, (&start, &goal), base, origin)?;
     let c = &file.constraints;
+    crate::plan::between::check_settings(&c.between_nodes, origin)?;
     Ok(Spec {
         origin: origin.to_string(),
         gravity,
@@ -45,6 +46,8 @@ pub fn resolve(file: &TaskFile, base: &Path, origin: &str) -> Result<Spec> {
         balance: c.balance.as_ref().map(|b| Balance { x: b.x, y: b.y, ground_z: b.ground_z }),
         loads,
         initial_guess,
+        between_nodes: c.between_nodes,
+        check_nodes: Default::default(),
         model,
     })
 }
@@ -193,7 +196,15 @@ fn limits(model: &mut Model, c: &ConstraintsSection, origin: &str) -> Result<()>
     }
     for (name, lim) in &c.torque_limit {
         let i = dof(model, name, &format!("constraints.torque_limit.{name}"), origin)?;
-        model.joints[i + 1].limits.effort = *lim;
+        let limits = &mut model.joints[i + 1].limits;
+        (limits.effort, limits.effort_positive, limits.effort_negative) = (*lim, None, None);
+    }
+    for (positive, map, key) in [(true, &c.torque_limit_positive, "positive"), (false, &c.torque_limit_negative, "negative")] {
+        for (name, lim) in map {
+            let i = dof(model, name, &format!("constraints.torque_limit_{key}.{name}"), origin)?;
+            let limits = &mut model.joints[i + 1].limits;
+            *(if positive { &mut limits.effort_positive } else { &mut limits.effort_negative }) = Some(*lim);
+        }
     }
     Ok(())
 }

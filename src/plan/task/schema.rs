@@ -235,14 +235,25 @@ pub struct ConstraintsSection {
     /// Overrides: joint → [lower, upper] in degrees (metres for prismatic).
     #[serde(default, deserialize_with = "exact::map")]
     pub position_limit: BTreeMap<String, [f64; 2]>,
-    /// Overrides: joint → |τ| limit in N·m (N for prismatic).
+    /// Overrides: joint → |τ| limit in N·m (N for prismatic), both directions (replaces the model's
+    /// per-direction limits of that joint).
     #[serde(default)]
     pub torque_limit: BTreeMap<String, f64>,
+    /// Overrides: joint → limit of the torque along `+axis` (N·m, N for prismatic), after `torque_limit`.
+    #[serde(default)]
+    pub torque_limit_positive: BTreeMap<String, f64>,
+    /// Overrides: joint → limit of the torque along `−axis` (a magnitude, N·m, N for prismatic).
+    #[serde(default)]
+    pub torque_limit_negative: BTreeMap<String, f64>,
     /// `[[constraints.contact]]`: frames held by the environment (eq. 13).
     #[serde(default)]
     pub contact: Vec<ContactSpec>,
     /// `[constraints.balance]`: keep the centre of pressure over the feet.
     pub balance: Option<BalanceSpec>,
+    /// `[constraints.between_nodes]`: the dense check between the nodes, its tolerances in physical units,
+    /// and its refinement (default on).
+    #[serde(default)]
+    pub between_nodes: crate::plan::BetweenNodes,
 }
 
 impl Default for ConstraintsSection {
@@ -252,8 +263,11 @@ impl Default for ConstraintsSection {
             torque_limits: true,
             position_limit: BTreeMap::new(),
             torque_limit: BTreeMap::new(),
+            torque_limit_positive: BTreeMap::new(),
+            torque_limit_negative: BTreeMap::new(),
             contact: vec![],
             balance: None,
+            between_nodes: crate::plan::BetweenNodes::default(),
         }
     }
 }

@@ -18,6 +18,7 @@
 
 mod constraints;
 mod hessian;
+mod measure;
 mod objective;
 
 use super::spec::{Objective, Spec};
@@ -27,6 +28,7 @@ use crate::solve::{ConstraintKind, Dims, Evaluation, Patterns, Problem, RowFamil
 use crate::spatial::{Force, Vec3};
 use crate::trajectory::bspline::{BasisAt, CubicBSpline, Nodes};
 pub use constraints::IneqRow;
+pub use measure::{Measured, RowKind};
 
 /// Where each control point's unknowns sit in `x`.
 #[derive(Clone, Debug)]
@@ -171,7 +173,8 @@ pub struct Transcription<'s> {
     sqrt_weights: Vec<f64>,
     limits_low: Vec<f64>,
     limits_up: Vec<f64>,
-    effort: Vec<f64>,
+    /// Effort limits along `+axis` and `−axis` (magnitudes) per joint.
+    effort: [Vec<f64>; 2],
     total_weight: f64,
     // scratch, allocated once
     data: Data,
@@ -234,8 +237,21 @@ impl<'s> Transcription<'s> {
         let mut times: Vec<f64> = (1..n).map(|k| k as f64 * h).collect();
         times.insert(0, h / 2.0);
         times.push(spline.duration() - h / 2.0);
-        let contact_nodes = spline.grid(&times)?;
+        let mut contact_nodes = spline.grid(&times)?;
+        // The refinement's check nodes come last, so that the other rows keep their indices.
+        append(&mut nodes, spline.grid(&spec.check_nodes.limits)?);
+        append(&mut contact_nodes, spline.grid(&spec.check_nodes.closures)?);
         Ok(Self::with_nodes(spec, spline, nodes, contact_nodes))
+    }
+
+    /// Joint `i`'s effort limit along `+axis` (`upper`) or `−axis`, a magnitude (N·m or N).
+    pub fn torque_bound(&self, i: usize, upper: bool) -> f64 {
+        self.effort[usize::from(!upper)][i]
+    }
+
+    /// Equality rows per contact node (the contact-force components).
+    pub fn n_eq_per_node(&self) -> usize {
+        self.n_eq_node
     }
 
     /// The problem evaluated at the times `times` (s) instead of its quadrature nodes — every row, contacts
@@ -279,7 +295,8 @@ impl<'s> Transcription<'s> {
             }
         }
         let (limits_low, limits_up): (Vec<f64>, Vec<f64>) = model.position_limits();
-        let effort: Vec<f64> = model.joints[1..].iter().map(|j| j.limits.effort).collect();
+        let effort: [Vec<f64>; 2] =
+            [true, false].map(|up| model.joints[1..].iter().map(|j| j.limits.effort_toward(up)).collect());
         let mut ineq_rows = Vec::new();
         if spec.position_limits {
             for i in 0..nv {
@@ -293,8 +310,10 @@ impl<'s> Transcription<'s> {
         }
         if spec.torque_limits {
             for i in 0..nv {
-                if effort[i].is_finite() {
+                if effort[0][i].is_finite() {
                     ineq_rows.push(IneqRow::UpperTorque(i));
+                }
+                if effort[1][i].is_finite() {
                     ineq_rows.push(IneqRow::LowerTorque(i));
                 }
             }
@@ -645,7 +664,8 @@ impl Problem for Transcription<'_> {
                         1.0
                     }
                 }
-                IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) => self.effort[i].max(1e-9),
+                IneqRow::UpperTorque(i) => self.torque_bound(i, true).max(1e-9),
+                IneqRow::LowerTorque(i) => self.torque_bound(i, false).max(1e-9),
                 IneqRow::Push(_) | IneqRow::Friction(..) => self.total_weight.max(1.0),
                 IneqRow::Balance(4) => self.total_weight.max(1.0),
                 IneqRow::Balance(_) => (0.1 * self.total_weight).max(1.0),
@@ -702,6 +722,13 @@ impl Problem for Transcription<'_> {
             }
         }
     }
+}
+
+/// `nodes` followed by `more` (weight 0).
+fn append(nodes: &mut Nodes, more: Nodes) {
+    nodes.t.extend(more.t);
+    nodes.w.extend(more.w);
+    nodes.basis.extend(more.basis);
 }
 
 /// Everything known about the motion at one time.
