@@ -5,7 +5,7 @@ mod common;
 
 use common::{random_tree, Rng};
 use mintorque::model::{Frame, JointLimits, Passive};
-use mintorque::plan::{Balance, CheckNodes, Contact, ContactKind, PointLoad, Spec, Transcription};
+use mintorque::plan::{Balance, CheckNodes, Contact, ContactKind, PointLoad, Spec, Terms, Transcription};
 use mintorque::solve::{Evaluation, Problem};
 use mintorque::spatial::{Transform, Vec3};
 
@@ -71,6 +71,8 @@ fn random_spec(seed: u64, n: usize, zero_end_velocity: bool) -> Spec {
     spec.balance = Some(Balance { x: [-0.1, 0.2], y: [-0.15, 0.15], ground_z: -0.05 });
     spec.loads = vec![PointLoad { frame: grip_f, force: Vec3::new(3.0, -2.0, -20.0) }];
     spec.gravity = Vec3::new(0.0, 0.0, -9.81);
+    // Every term of the objective, so that their rows are checked too.
+    spec.terms = Terms { torque: 0.7, strength: 30.0, torque_change: 0.02, acceleration: 0.3, jerk: 0.01 };
     // Check nodes of the refinement between the nodes: limit rows and closures at extra times.
     spec.check_nodes = CheckNodes { limits: vec![0.37, 0.81], closures: vec![0.52] };
     spec
@@ -135,6 +137,7 @@ fn inverse_inertia_objective_has_the_exact_gradient() {
         let mut spec = random_spec(seed, n, true);
         spec.objective = Objective::TorqueInverseInertia;
         spec.weights = vec![1.0; n];
+        spec.terms.strength = 0.0; // the strength term goes with the torque objective only
         let mut problem = Transcription::new(&spec).unwrap();
         let dims = problem.dims();
         let mut eval = Evaluation::new(dims, &problem.jacobian_patterns()).unwrap();

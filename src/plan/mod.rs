@@ -20,7 +20,7 @@ pub use multistart::{MultiStart, StartReport};
 pub use refine::{last_change, plan_refined, Level, Refinement};
 pub use run::{plan, plan_with_starts};
 pub use spec::{Balance, Contact, ContactKind, InitialGuess, Objective, PointLoad, Spec};
-pub use transcription::{NodeValues, Transcription};
+pub use transcription::{NodeValues, Terms, Transcription};
 
 use crate::error::{Error, Result};
 use crate::solve::Outcome;
@@ -138,6 +138,7 @@ pub fn validate(spec: &Spec, origin: &str) -> Result<()> {
     if spec.weights.len() != nv || spec.weights.iter().any(|w| !(w.is_finite() && *w >= 0.0)) {
         return err("objective.weights", "must be one finite, non-negative weight per joint".into());
     }
+    check_terms(spec, origin)?;
     if !spec.gravity.iter().all(|g| g.is_finite()) {
         return err("environment.gravity", "must be finite".into());
     }
@@ -172,6 +173,23 @@ pub fn validate(spec: &Spec, origin: &str) -> Result<()> {
         if !(b.x[0] < b.x[1] && b.y[0] < b.y[1]) {
             return err("constraints.balance", "the support rectangle must have min < max in x and y".into());
         }
+    }
+    Ok(())
+}
+
+/// The objective's terms: finite, ≥ 0, one at least positive; the strength term with the torque objective.
+fn check_terms(spec: &Spec, origin: &str) -> Result<()> {
+    for (name, w) in spec.terms.named() {
+        if !(w.is_finite() && w >= 0.0) {
+            return Err(Error::task(origin, &format!("objective.terms.{name}"), format!("must be a finite weight ≥ 0, got {w}")));
+        }
+    }
+    if spec.terms.named().iter().all(|(_, w)| *w == 0.0) {
+        return Err(Error::task(origin, "objective.terms", "every weight is 0: there is nothing to minimise"));
+    }
+    if spec.terms.strength > 0.0 && spec.objective != Objective::Torque {
+        let message = "the strength term combines with kind = \"torque\" only (½∫τᵀH⁻¹τ is not diagonal in τ)";
+        return Err(Error::task(origin, "objective.terms.strength", message));
     }
     Ok(())
 }

@@ -150,6 +150,8 @@ pub struct Spec {
     pub objective: Objective,
     /// Per-joint weights of the objective (`W`, diagonal).
     pub weights: Vec<f64>,
+    /// The objective's terms and their weights (default: the torque term alone, weight 1).
+    pub terms: crate::plan::transcription::Terms,
     /// Enforce the model's position limits at the quadrature nodes (default true, as in a task file).
     pub position_limits: bool,
     /// Enforce the model's effort limits `|τ| ≤ effort` at the quadrature nodes (default true, as in a
@@ -190,6 +192,7 @@ impl Spec {
             nodes_per_span: 4,
             objective: Objective::Torque,
             weights: vec![1.0; nv],
+            terms: Default::default(),
             position_limits: true,
             torque_limits: true,
             contacts: vec![],

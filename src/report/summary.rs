@@ -12,8 +12,11 @@ pub struct Summary {
     pub reason: String,
     /// The objective's value: `½∫τᵀWτ dt` of the active torques (N²·m²·s), or `½∫τᵀH⁻¹τ dt`.
     pub objective: f64,
-    /// Which objective: "½∫τᵀWτ dt" or "½∫τᵀH⁻¹τ dt".
+    /// Which objective: "½∫τᵀWτ dt" or "½∫τᵀH⁻¹τ dt", with the other terms' weights when there are any.
     pub objective_kind: String,
+    /// The objective's terms with a positive weight: each one's weight and value (the discrete integral
+    /// minimised, before its weight); `objective` is `Σ weight · value`.
+    pub objective_terms: Vec<TermSummary>,
     /// The same for the initial guess.
     pub initial_guess_objective: f64,
     /// The solver, as [`crate::plan::SolverKind::name`] describes it.
@@ -52,6 +55,37 @@ pub struct Summary {
     pub refinement: Vec<crate::plan::Level>,
     /// The relative change of the effort at the last refinement: the discretisation's error estimate.
     pub effort_change_last_refinement: Option<f64>,
+}
+
+/// One term of the objective.
+#[derive(Serialize, Debug, Clone)]
+pub struct TermSummary {
+    /// Its name in the task file (`torque`, `strength`, `torque_change`, `acceleration`, `jerk`).
+    pub name: String,
+    /// Its formula.
+    pub formula: String,
+    /// Its weight.
+    pub weight: f64,
+    /// Its value (before the weight).
+    pub value: f64,
+}
+
+/// The objective's terms with a positive weight, evaluated at the plan's unknowns.
+fn terms_of(spec: &Spec, plan: &Plan) -> Vec<TermSummary> {
+    let Ok(mut t) = crate::plan::Transcription::new(spec) else { return vec![] };
+    let Ok(values) = t.term_values(&plan.x) else { return vec![] };
+    let inverse = spec.objective == crate::plan::Objective::TorqueInverseInertia;
+    values
+        .iter()
+        .zip(crate::plan::Terms::FORMULAS)
+        .filter(|((_, w, _), _)| *w > 0.0)
+        .map(|((name, weight, value), formula)| TermSummary {
+            name: name.to_string(),
+            formula: if inverse && *name == "torque" { "½∫τᵀH⁻¹τ dt".into() } else { formula.to_string() },
+            weight: *weight,
+            value: *value,
+        })
+        .collect()
 }
 
 /// How the time integral is discretised.
@@ -166,9 +200,11 @@ impl Summary {
             reason: o.reason.to_string(),
             objective: o.objective,
             objective_kind: match spec.objective {
+                _ if spec.terms != crate::plan::Terms::default() => "Σ weight × term (objective_terms)".into(),
                 crate::plan::Objective::Torque => "½∫τᵀWτ dt".into(),
                 crate::plan::Objective::TorqueInverseInertia => "½∫τᵀH⁻¹τ dt".into(),
             },
+            objective_terms: terms_of(spec, plan),
             initial_guess_objective: plan.initial_objective,
             solver: if plan.polished { format!("{} + BFGS polish", plan.solver.name()) } else { plan.solver.name().to_string() },
             iterations: o.iterations,
@@ -221,6 +257,11 @@ pub fn text_table(s: &Summary) -> String {
         s.objective,
         s.initial_guess_objective
     );
+    if s.objective_terms.iter().any(|t| t.name != "torque" || t.weight != 1.0) {
+        let each: Vec<String> =
+            s.objective_terms.iter().map(|t| format!("{} × {} = {:.6e}", t.weight, t.formula, t.value)).collect();
+        let _ = writeln!(out, "objective terms: {}", each.join(" + "));
+    }
     if s.refinement.len() > 1 {
         let levels: Vec<String> = s
             .refinement

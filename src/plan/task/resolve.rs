@@ -40,6 +40,7 @@ pub fn resolve(file: &TaskFile, base: &Path, origin: &str) -> Result<Spec> {
         nodes_per_span: file.discretization.nodes_per_span,
         objective,
         weights,
+        terms: file.objective.terms,
         position_limits: c.position_limits,
         torque_limits: c.torque_limits,
         contacts,

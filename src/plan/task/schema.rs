@@ -328,6 +328,10 @@ pub struct ObjectiveSection {
     /// Joint → weight (default 1).
     #[serde(default)]
     pub weights: BTreeMap<String, f64>,
+    /// The terms and their weights, e.g. `{ torque = 1.0, torque_change = 0.01, jerk = 1e-4 }` (default:
+    /// `torque = 1` alone; docs/task-file.md).
+    #[serde(default)]
+    pub terms: crate::plan::Terms,
 }
 
 fn torque() -> String {
@@ -336,7 +340,7 @@ fn torque() -> String {
 
 impl Default for ObjectiveSection {
     fn default() -> Self {
-        ObjectiveSection { kind: torque(), weights: BTreeMap::new() }
+        ObjectiveSection { kind: torque(), weights: BTreeMap::new(), terms: Default::default() }
     }
 }
 

@@ -20,6 +20,7 @@ mod constraints;
 mod hessian;
 mod measure;
 mod objective;
+mod terms;
 
 use super::spec::{Objective, Spec};
 use crate::dynamics::point_force::{add_generalized_force, generalized_force_derivative, path_dofs, point_jacobian};
@@ -29,6 +30,7 @@ use crate::spatial::{Force, Vec3};
 use crate::trajectory::bspline::{BasisAt, CubicBSpline, Nodes};
 pub use constraints::IneqRow;
 pub use measure::{Measured, RowKind};
+pub use terms::Terms;
 
 /// Where each control point's unknowns sit in `x`.
 #[derive(Clone, Debug)]
@@ -118,6 +120,13 @@ struct Derivatives<'a> {
 }
 
 impl NodeWork {
+    /// The objective's residual and its derivatives times `s`.
+    fn scale_residual(&mut self, s: f64) {
+        for v in [&mut self.res, &mut self.rdq, &mut self.rdv, &mut self.rda, &mut self.rdl] {
+            v.iter_mut().for_each(|x| *x *= s);
+        }
+    }
+
     /// The derivatives of the objective's residual `l` at this node.
     fn residual_row(&self, l: usize, nv: usize, nl: usize) -> Derivatives<'_> {
         Derivatives {
@@ -170,7 +179,8 @@ pub struct Transcription<'s> {
     contacts: Vec<ContactInfo>,
     load_paths: Vec<Vec<usize>>,
     n_eq_node: usize,
-    sqrt_weights: Vec<f64>,
+    /// The objective's terms' rows and scratch.
+    terms: terms::TermWork,
     limits_low: Vec<f64>,
     limits_up: Vec<f64>,
     /// Effort limits along `+axis` and `−axis` (magnitudes) per joint.
@@ -239,9 +249,13 @@ impl<'s> Transcription<'s> {
         times.push(spline.duration() - h / 2.0);
         let mut contact_nodes = spline.grid(&times)?;
         // The refinement's check nodes come last, so that the other rows keep their indices.
+        let ordered = nodes.t.len();
         append(&mut nodes, spline.grid(&spec.check_nodes.limits)?);
         append(&mut contact_nodes, spline.grid(&spec.check_nodes.closures)?);
-        Ok(Self::with_nodes(spec, spline, nodes, contact_nodes))
+        let mut t = Self::with_nodes(spec, spline, nodes, contact_nodes);
+        // The ends and the Gauss nodes are in time order: the torque-change rows join them.
+        t.terms = terms::TermWork::new(&t, ordered);
+        Ok(t)
     }
 
     /// Joint `i`'s effort limit along `+axis` (`upper`) or `−axis`, a magnitude (N·m or N).
@@ -359,9 +373,9 @@ impl<'s> Transcription<'s> {
             rda: vec![0.0; nv * nv],
             rdl: vec![0.0; nv * n_lambda],
         };
-        Transcription {
+        let mut t = Transcription {
             n_eq_node: n_lambda,
-            sqrt_weights: spec.weights.iter().map(|w| w.sqrt()).collect(),
+            terms: terms::TermWork::default(),
             data: Data::new(model),
             ctrl: vec![0.0; spec.n_ctrl * nv],
             lam_ctrl: vec![0.0; spec.n_ctrl * n_lambda],
@@ -380,7 +394,9 @@ impl<'s> Transcription<'s> {
             total_weight,
             work,
             hess: hessian::HessianWork::new(nv, n_lambda),
-        }
+        };
+        t.terms = terms::TermWork::new(&t, 0);
+        t
     }
 
     /// Degrees of freedom.
@@ -509,7 +525,8 @@ impl<'s> Transcription<'s> {
         match spec.objective {
             Objective::Torque => {
                 for l in 0..nv {
-                    let s = self.sqrt_weights[l];
+                    let s = self.torque_factor(l, self.work.tau[l]);
+                    let w = &mut self.work;
                     w.res[l] = s * w.tau[l];
                     if jac {
                         for c in 0..nv {
@@ -523,7 +540,10 @@ impl<'s> Transcription<'s> {
                     }
                 }
             }
-            Objective::TorqueInverseInertia => objective::inverse_inertia_residual(model, data, w, nv, nl, jac),
+            Objective::TorqueInverseInertia => {
+                objective::inverse_inertia_residual(model, &mut self.data, &mut self.work, nv, nl, jac);
+                self.work.scale_residual(spec.terms.torque.sqrt());
+            }
         }
     }
 
@@ -575,6 +595,11 @@ impl Transcription<'_> {
         (index / per, self.ineq_rows[index % per])
     }
 
+    /// `true` when the effort limits of some joint differ by direction.
+    fn asymmetric_limits(&self) -> bool {
+        self.effort[0] != self.effort[1]
+    }
+
     /// Starts a solve-independent evaluation: the control points of `x`.
     pub fn set_x(&mut self, x: &[f64]) {
         self.layout.unpack(x, &self.fixed_values, &mut self.ctrl, &mut self.lam_ctrl);
@@ -586,7 +611,7 @@ impl Problem for Transcription<'_> {
         let nn = self.n_nodes();
         Dims {
             n: self.layout.n,
-            n_res: nn * self.layout.nv,
+            n_res: self.terms.n_res(),
             n_eq: self.contact_nodes.t.len() * self.n_eq_node,
             n_ineq: nn * self.n_ineq_node(),
         }
@@ -617,6 +642,7 @@ impl Problem for Transcription<'_> {
                 p.h.push(motion.clone());
             }
         }
+        self.term_patterns(&mut p);
         p
     }
 
@@ -638,7 +664,9 @@ impl Problem for Transcription<'_> {
                 }
             }
             self.inequality_rows(k, want_jac, out);
+            self.term_rows(k, want_jac, out);
         }
+        self.jerk_rows(want_jac, out);
         Ok(())
     }
 
