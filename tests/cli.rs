@@ -361,7 +361,9 @@ fn a_plan_killed_at_random_times_leaves_a_whole_plan() {
 #[test]
 fn a_warm_start_from_a_plan_directory_converges_at_once() {
     let dir = scratch("warm");
-    for example in ["arm_lift_earth", "push_up"] {
+    // The chin-up is the closed loop here: the push-up ends not converged since its limits must hold between
+    // the nodes too (docs/task-file.md, "Limits between the nodes").
+    for example in ["arm_lift_earth", "chin_up_earth"] {
         let (first, again) = (dir.join(format!("{example}-1")), dir.join(format!("{example}-2")));
         let task = format!("examples/{example}.toml");
         let (code, _, err) = run(mintorque().args(["plan", &task, "-q", "--no-plots", "--out"]).arg(&first).current_dir(root()));

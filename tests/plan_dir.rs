@@ -47,6 +47,8 @@ fn contents(amplitude: f64, contact: bool, plots: bool) -> PlanContents {
         support: None,
         converged: true,
         multipliers: None,
+        check_nodes: vec![],
+        closure_nodes: vec![],
         samples,
     };
     PlanContents { plots, ..PlanContents::from_record(m, record) }

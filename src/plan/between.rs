@@ -74,7 +74,7 @@ impl Tolerances {
         ];
         for (name, v) in all {
             if !(v.is_finite() && v >= 0.0) {
-                return Err(Error::task(origin, &format!("{field}.{name}"), format!("must be a finite number ≥ 0, got {v}")));
+                return Err(Error::task(origin, format!("{field}.{name}"), format!("must be a finite number ≥ 0, got {v}")));
             }
         }
         Ok(())
@@ -88,7 +88,7 @@ pub struct BetweenNodes {
     /// Refine where the check fails (default true). When false the check is still made and reported, and
     /// a plan whose check fails is not converged.
     pub refine: bool,
-    /// Rounds of refinement (default 4): each adds check nodes at the worst times and re-solves warm.
+    /// Rounds of refinement (default 8): each adds check nodes at the worst times and re-solves.
     pub rounds: usize,
     /// Evenly spaced check times per knot span (default 16).
     pub per_span: usize,
@@ -98,7 +98,7 @@ pub struct BetweenNodes {
 
 impl Default for BetweenNodes {
     fn default() -> Self {
-        BetweenNodes { refine: true, rounds: 4, per_span: 16, tolerances: Tolerances::default() }
+        BetweenNodes { refine: true, rounds: 8, per_span: 16, tolerances: Tolerances::default() }
     }
 }
 

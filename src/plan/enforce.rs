@@ -1,7 +1,9 @@
 //! Refinement until the limits hold between the nodes ([`super::between`]): check the solved motion on the
 //! dense grid; where a row group misses its tolerance, add check nodes at the worst time of every
 //! offending knot span (inequality rows at weight 0 in the objective, or loop closures) and re-solve from
-//! the previous solution, warm-started with its multipliers (the new rows' start at 0). Repeat until the
+//! the previous solution, warm-started with its multipliers (the new rows' start at 0), with at most the
+//! first solve's iterations — and where that does not converge, from the initial guess `guess`, cold (the
+//! bundled examples converge so where the warm re-solve crawls, docs/task-file.md). Repeat until the
 //! check holds, or the rounds ([`super::BetweenNodes::rounds`]), the iterations or the time of the whole
 //! solve are spent; then the plan is not converged, and the reason names every missed limit in its units.
 //! Where the check holds at once this costs one dense evaluation.
@@ -25,19 +27,21 @@ pub(super) struct Enforced {
     pub rounds: usize,
 }
 
-/// Checks `run` between the nodes and refines as the module docs say, within `settings.max_iterations`
-/// (counted over the whole solve, `run`'s included) and `deadline`.
+/// Checks `run` (solved from `guess`) between the nodes and refines as the module docs say, within
+/// `settings.max_iterations` (counted over the whole solve, `run`'s included) and `deadline`.
 pub(super) fn enforce(
     spec: &Spec,
     solver: SolverKind,
     settings: &Settings,
     deadline: Option<Instant>,
     mut run: Run,
+    guess: &[f64],
     observer: &mut dyn FnMut(&Progress),
 ) -> Result<Enforced> {
     let b = spec.between_nodes;
     let mut spec = spec.clone();
     let mut rounds = 0;
+    let first_iterations = run.outcome.iterations;
     loop {
         let violations = between::check(&spec, &run.outcome.x, b.per_span, &b.tolerances)?;
         if violations.is_empty() {
@@ -62,8 +66,17 @@ pub(super) fn enforce(
             let warm = padded(&run.outcome.multipliers, &spec, &more)?;
             spec.check_nodes.limits.extend(&more.limits);
             spec.check_nodes.closures.extend(&more.closures);
-            let resolve = Settings { warm_start: Some(warm), max_iterations: left, ..settings.clone() };
-            let next = run_start(&spec, solver, &resolve, deadline, &run.outcome.x, observer)?;
+            // Warm first, with at most the first solve's iterations; where that does not converge (the
+            // augmented Lagrangian can crawl at the penalty it ended with), solve again from the guess,
+            // cold, with the check nodes — within what is left of the one budget.
+            let cap = left.min(first_iterations.max(100));
+            let warm = Settings { warm_start: Some(warm), max_iterations: cap, ..settings.clone() };
+            let mut next = run_start(&spec, solver, &warm, deadline, &run.outcome.x, observer)?;
+            let rest = left.saturating_sub(next.outcome.iterations);
+            if !next.outcome.converged && rest > 0 && remaining(deadline).is_none_or(|t| t > 0.0) {
+                let cold = Settings { max_iterations: rest, ..settings.clone() };
+                next = sum(next, run_start(&spec, solver, &cold, deadline, guess, observer)?);
+            }
             run = sum(run, next);
             rounds += 1;
             continue;

@@ -181,7 +181,7 @@ pub fn validate(spec: &Spec, origin: &str) -> Result<()> {
 fn check_terms(spec: &Spec, origin: &str) -> Result<()> {
     for (name, w) in spec.terms.named() {
         if !(w.is_finite() && w >= 0.0) {
-            return Err(Error::task(origin, &format!("objective.terms.{name}"), format!("must be a finite weight ≥ 0, got {w}")));
+            return Err(Error::task(origin, format!("objective.terms.{name}"), format!("must be a finite weight ≥ 0, got {w}")));
         }
     }
     if spec.terms.named().iter().all(|(_, w)| *w == 0.0) {

@@ -38,7 +38,7 @@ pub fn plan_with_starts(
     let best = multistart::best(&runs);
     let starts = runs.iter().enumerate().map(|(k, r)| StartReport::new(k, multi, &r.outcome, r.polished, r.seconds)).collect();
     let run = runs.into_iter().nth(best).expect("at least one start");
-    let enforced = super::enforce::enforce(spec, solver, settings, deadline, run, observer)?;
+    let enforced = super::enforce::enforce(spec, solver, settings, deadline, run, &guesses[best], observer)?;
     let mut run = enforced.run;
     name_in_units(&mut run.outcome, &Transcription::new(&enforced.spec)?);
     let nv = spec.model.nv();
