@@ -179,6 +179,9 @@ pub fn check(spec: &Spec, x: &[f64], per_span: usize, tolerances: &Tolerances) -
     let rows = rows.chain((0..dims.n_ineq).map(|i| (ConstraintKind::Inequality, i, eval.g[i], n_eq + i % n_ineq.max(1))));
     let mut by_group: Vec<Option<usize>> = vec![None; n_eq + n_ineq];
     for (kind, i, raw, group) in rows {
+        if kind == ConstraintKind::Inequality && raw <= 0.0 {
+            continue; // holds (and a NaN is measured, and fails)
+        }
         let node = if kind == ConstraintKind::Equality { i / n_eq.max(1) } else { i / n_ineq.max(1) };
         let m = grid.measure(kind, i, raw, &eval.g);
         let tolerance = tolerances.of(&m);
