@@ -415,10 +415,14 @@ fn the_dip_down_passes_the_bar_and_would_go_through_it_unconstrained() {
     let mut checked = task.spec.clone();
     checked.position_limits = false;
     checked.torque_limits = false;
-    let (_, message) = mintorque::plan::check_between_nodes(&checked, &unconstrained.x, 16).unwrap().unwrap();
-    for part in ["distance between body", "obstacle \"bar\"", "penetrates by", "mm", "t = "] {
-        assert!(message.contains(part), "{message:?} lacks {part:?}");
+    let found = mintorque::plan::between::check(&checked, &unconstrained.x, 16, &Default::default()).unwrap();
+    let worst = found.first().expect("the penetration is found");
+    for part in ["distance between body", "obstacle \"bar\""] {
+        assert!(worst.constraint.contains(part), "{:?} lacks {part:?}", worst.constraint);
     }
+    // In mm: the distance there, below the margin, by more than a centimetre.
+    assert_eq!(worst.unit, "mm");
+    assert!(worst.value < worst.limit - 10.0 && worst.time_s >= 0.0, "{worst:?}");
 }
 
 // ---- Collision shapes from the model files ----

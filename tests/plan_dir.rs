@@ -49,6 +49,8 @@ fn contents(amplitude: f64, contact: bool, plots: bool) -> PlanContents {
         collision_shapes: vec![],
         converged: true,
         multipliers: None,
+        check_nodes: vec![],
+        closure_nodes: vec![],
         samples,
     };
     PlanContents { plots, ..PlanContents::from_record(m, record) }

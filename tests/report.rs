@@ -50,6 +50,8 @@ fn record(model: &Model, times: &[f64], motion: impl Fn(usize, f64) -> [f64; 4])
         collision_shapes: vec![],
         converged: true,
         multipliers: None,
+        check_nodes: vec![],
+        closure_nodes: vec![],
         samples,
     }
 }

@@ -7,8 +7,8 @@ use common::{random_tree, Rng};
 use mintorque::geometry::Capsule;
 use mintorque::model::{Frame, JointLimits, Passive};
 use mintorque::plan::{
-    Balance, Collider, Collision, Contact, ContactKind, EndCondition, FrameGoal, Obstacle, ObstacleShape, Orientation, PointLoad,
-    Spec, Transcription,
+    Balance, CheckNodes, Collider, Collision, Contact, ContactKind, EndCondition, FrameGoal, Obstacle, ObstacleShape,
+    Orientation, PointLoad, Spec, Terms, Transcription,
 };
 use mintorque::solve::{Evaluation, Problem};
 use mintorque::spatial::{Transform, Vec3};
@@ -16,8 +16,12 @@ use mintorque::spatial::{Transform, Vec3};
 fn random_spec(seed: u64, n: usize, zero_end_velocity: bool) -> Spec {
     let mut model = random_tree(seed, n);
     let mut rng = Rng(seed ^ 77);
-    for j in model.joints[1..].iter_mut() {
-        j.limits = JointLimits { lower: -1.0, upper: 1.2, velocity: 10.0, effort: 50.0 };
+    for (i, j) in model.joints[1..].iter_mut().enumerate() {
+        j.limits = JointLimits { lower: -1.0, upper: 1.2, velocity: 10.0, effort: 50.0, ..JointLimits::default() };
+        // Every other joint: a flexor stronger than its extensor.
+        if i % 2 == 1 {
+            (j.limits.effort_positive, j.limits.effort_negative) = (Some(65.0), Some(35.0));
+        }
         j.passive = Passive { stiffness: rng.uniform(0.0, 3.0), rest: rng.uniform(-0.5, 0.5), damping: rng.uniform(0.0, 1.0) };
     }
     let hand = model.bodies.len() - 1;
@@ -92,6 +96,10 @@ fn random_spec(seed: u64, n: usize, zero_end_velocity: bool) -> Spec {
     if n > 2 && !spec.model.adjacent_solids(n, 1) {
         spec.collisions.push(Collision { body: n, other: Collider::Body(1), margin: 0.01 });
     }
+    // Every term of the objective, so that their rows are checked too.
+    spec.terms = Terms { torque: 0.7, strength: 30.0, torque_change: 0.02, acceleration: 0.3, jerk: 0.01 };
+    // Check nodes of the refinement between the nodes: limit rows and closures at extra times.
+    spec.check_nodes = CheckNodes { limits: vec![0.37, 0.81], closures: vec![0.52] };
     spec
 }
 
@@ -200,6 +208,7 @@ fn inverse_inertia_objective_has_the_exact_gradient() {
         let mut spec = random_spec(seed, n, true);
         spec.objective = Objective::TorqueInverseInertia;
         spec.weights = vec![1.0; n];
+        spec.terms.strength = 0.0; // the strength term goes with the torque objective only
         let mut problem = Transcription::new(&spec).unwrap();
         let dims = problem.dims();
         let mut eval = Evaluation::new(dims, &problem.jacobian_patterns()).unwrap();
@@ -289,4 +298,38 @@ fn second_order_term_matches_differences_of_the_gradient() {
         assert!((banded.to_dense() - term).amax() < 1e-12 * scale);
         println!("seed {seed}: {} unknowns, worst relative error {worst:.2e} (scale {scale:.2e})", dims.n);
     }
+}
+
+/// Per-direction effort limits: the upper torque row is `τ − τ⁺`, the lower `−τ − τ⁻`, each with its own
+/// bound (and scale), and the check nodes add one node's rows each.
+#[test]
+fn torque_rows_use_the_bound_of_their_direction() {
+    use mintorque::plan::transcription::IneqRow;
+    let spec = random_spec(21, 4, true);
+    let mut problem = Transcription::new(&spec).unwrap();
+    let dims = problem.dims();
+    let mut eval = Evaluation::new(dims, &problem.jacobian_patterns()).unwrap();
+    let x: Vec<f64> = Rng(8).vec(dims.n, -0.8, 0.8);
+    problem.evaluate(&x, false, &mut eval).unwrap();
+    let per = problem.ineq_rows.len();
+    let scales = problem.scales();
+    let nodes = problem.len();
+    let last = nodes - 1; // a check node
+    assert_eq!(problem.nodes.t[last], 0.81);
+    assert_eq!(problem.nodes.w[last], 0.0, "check nodes add nothing to the objective");
+    let tau = problem.node_values(last).tau;
+    for (r, row) in problem.ineq_rows.clone().iter().enumerate() {
+        let g = eval.g[last * per + r];
+        let (i, want, bound) = match *row {
+            IneqRow::UpperTorque(i) => (i, tau[i] - [50.0, 65.0][i % 2], [50.0, 65.0][i % 2]),
+            IneqRow::LowerTorque(i) => (i, -tau[i] - [50.0, 35.0][i % 2], [50.0, 35.0][i % 2]),
+            _ => continue,
+        };
+        assert!((g - want).abs() < 1e-9 * (1.0 + want.abs()), "joint {i}: {row:?} = {g}, want {want}");
+        assert_eq!(scales.ineq[last * per + r], bound);
+    }
+    let plain = Spec { check_nodes: CheckNodes::default(), ..spec.clone() };
+    let fewer = Transcription::new(&plain).unwrap().dims();
+    assert_eq!(dims.n_ineq, fewer.n_ineq + 2 * per);
+    assert_eq!(dims.n_eq, fewer.n_eq + problem.n_eq_per_node());
 }

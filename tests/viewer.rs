@@ -71,6 +71,8 @@ fn record(model: &Model, duration: f64, n: usize, amplitude: f64, contact_frames
         contacts,
         converged: true,
         multipliers: None,
+        check_nodes: vec![],
+        closure_nodes: vec![],
         samples,
     }
 }

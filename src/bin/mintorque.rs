@@ -228,8 +228,13 @@ fn run_plan(
         ergonomics.iter().for_each(|e| print!("{}", report::ergonomics::text_table(e)));
         println!("results in {}", out.display());
     }
-    if let Some(v) = summary.worst_violation_at_nodes.as_ref().filter(|_| !summary.converged) {
-        eprintln!("       worst constraint: {} (scaled violation {:.2e})", v.constraint, v.value);
+    // The worst constraint at the nodes, in units, when it is violated there (the between-node misses are
+    // in the reason).
+    let between = matches!(planned.outcome.reason, mintorque::solve::StopReason::BetweenNodes(_));
+    if let Some(v) =
+        summary.worst_violation_at_nodes.as_ref().filter(|v| !summary.converged && !between && !v.constraint.ends_with("holds"))
+    {
+        eprintln!("       worst constraint at the nodes: {}", v.constraint);
     }
     Ok(summary.converged)
 }

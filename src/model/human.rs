@@ -933,6 +933,7 @@ impl<'a> Builder<'a> {
             upper: d.upper_deg.to_radians(),
             velocity: f64::INFINITY,
             effort: d.effort * strength,
+            ..JointLimits::default()
         };
         let passive = Passive { stiffness: d.stiffness * strength, rest: 0.0, damping: d.damping * strength };
         (label, axis, limits, passive)

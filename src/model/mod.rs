@@ -66,13 +66,38 @@ pub struct JointLimits {
     pub upper: f64,
     /// Joint velocity limit (rad/s or m/s).
     pub velocity: f64,
-    /// Effort limit `|τ| ≤ effort` (N·m or N).
+    /// Effort limit `|τ| ≤ effort` (N·m or N), both directions unless one is given below.
     pub effort: f64,
+    /// Effort limit along `+axis`, `τ ≤ effort_positive` (N·m or N; `None`: `effort`). A flexor and its
+    /// extensor differ.
+    pub effort_positive: Option<f64>,
+    /// Effort limit along `−axis`, `−τ ≤ effort_negative` (N·m or N, a magnitude; `None`: `effort`).
+    pub effort_negative: Option<f64>,
+}
+
+impl JointLimits {
+    /// The effort limit along `+axis` (`positive`) or `−axis`, as a magnitude (N·m or N).
+    pub fn effort_toward(&self, positive: bool) -> f64 {
+        let given = if positive { self.effort_positive } else { self.effort_negative };
+        given.unwrap_or(self.effort)
+    }
+
+    /// The larger of the two directions' effort limits (N·m or N).
+    pub fn effort_max(&self) -> f64 {
+        self.effort_toward(true).max(self.effort_toward(false))
+    }
 }
 
 impl Default for JointLimits {
     fn default() -> Self {
-        JointLimits { lower: f64::NEG_INFINITY, upper: f64::INFINITY, velocity: f64::INFINITY, effort: f64::INFINITY }
+        JointLimits {
+            lower: f64::NEG_INFINITY,
+            upper: f64::INFINITY,
+            velocity: f64::INFINITY,
+            effort: f64::INFINITY,
+            effort_positive: None,
+            effort_negative: None,
+        }
     }
 }
 

@@ -204,6 +204,12 @@ fn check_joint(model: &Model, i: usize) -> std::result::Result<(), String> {
         return Err("the velocity limit must be ≥ 0".into());
     }
     named("effort limit", ranges::EFFORT.check_or_unlimited(l.effort))?;
+    // A per-direction limit is a finite magnitude (give none for no limit that way).
+    for (what, v) in [("effort_positive", l.effort_positive), ("effort_negative", l.effort_negative)] {
+        if let Some(v) = v {
+            named(what, ranges::EFFORT.check(v))?;
+        }
+    }
     let s = &j.passive;
     if !(s.stiffness.is_finite() && s.rest.is_finite() && s.damping.is_finite()) || s.stiffness < 0.0 || s.damping < 0.0 {
         return Err("spring stiffness and damping must be finite and ≥ 0".into());

@@ -2,6 +2,8 @@
 //! onto B-splines ([`transcription`]), solved by a [`crate::solve::Solver`], and returned as a [`Plan`]:
 //! the motion at any time, with an honest account of how the solve went.
 
+pub mod between;
+mod enforce;
 pub mod examples;
 mod guess;
 pub mod ik;
@@ -14,6 +16,7 @@ pub mod spec;
 pub mod task;
 pub mod transcription;
 
+pub use between::{BetweenNodes, CheckNodes, NodeViolation, Tolerances};
 pub use guess::initial_x;
 pub use ik::close_loop;
 pub use multistart::{next_signed, MultiStart, StartReport};
@@ -23,10 +26,10 @@ pub use spec::{
     Balance, Collider, Collision, Contact, ContactKind, EndCondition, FrameGoal, InitialGuess, Objective, Obstacle,
     ObstacleShape, Orientation, PointLoad, Spec,
 };
-pub use transcription::{NodeValues, Transcription};
+pub use transcription::{NodeValues, Terms, Transcription};
 
 use crate::error::{Error, Result};
-use crate::solve::{self, Outcome, Problem};
+use crate::solve::Outcome;
 
 /// Which solver to use.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -72,8 +75,13 @@ pub struct Plan {
     pub initial_objective: f64,
     /// Wall-clock time of the solve (s).
     pub solve_seconds: f64,
-    /// The worst scaled constraint violation on a dense grid between the nodes, and where.
-    pub worst_between_nodes: Option<(f64, String)>,
+    /// Every row group that misses its tolerance on the dense check between the nodes
+    /// ([`between::check`]), in physical units, worst first; empty when every limit holds there.
+    pub between_nodes: Vec<NodeViolation>,
+    /// The check nodes the refinement between the nodes added ([`Spec::check_nodes`] of the last solve).
+    pub check_nodes: CheckNodes,
+    /// Rounds of that refinement.
+    pub between_rounds: usize,
     /// Every start's outcome (one entry for a single start), and which one this plan is.
     pub starts: Vec<StartReport>,
     /// Index in `starts` of this plan's start.
@@ -114,6 +122,7 @@ pub fn validate(spec: &Spec, origin: &str) -> Result<()> {
     if spec.nodes_per_span == 0 {
         return err("nodes_per_span", "must be at least 1".into());
     }
+    between::check_settings(&spec.between_nodes, origin)?;
     for (name, q) in [("start", &spec.start), ("goal", &spec.goal)] {
         if q.len() != nv {
             return err(name, format!("has {} values, the model has {nv} joints", q.len()));
@@ -139,6 +148,7 @@ pub fn validate(spec: &Spec, origin: &str) -> Result<()> {
     if spec.weights.len() != nv || spec.weights.iter().any(|w| !(w.is_finite() && *w >= 0.0)) {
         return err("objective.weights", "must be one finite, non-negative weight per joint".into());
     }
+    check_terms(spec, origin)?;
     if !spec.gravity.iter().all(|g| g.is_finite()) {
         return err("environment.gravity", "must be finite".into());
     }
@@ -177,38 +187,21 @@ pub fn validate(spec: &Spec, origin: &str) -> Result<()> {
     solids::validate(spec, origin)
 }
 
-/// The worst scaled violation on a grid of `per_span` evenly spaced times per knot span (ends included).
-pub fn check_between_nodes(spec: &Spec, x: &[f64], per_span: usize) -> Result<Option<(f64, String)>> {
-    let count = (spec.n_ctrl - 3) * per_span; // a clamped cubic has N − 3 knot spans
-    let times: Vec<f64> = (0..=count).map(|k| spec.duration * k as f64 / count as f64).collect();
-    let mut grid = Transcription::on_grid(spec, &times)?;
-    let dims = grid.dims();
-    if dims.n_eq + dims.n_ineq == 0 {
-        return Ok(None);
-    }
-    let mut eval = solve::Evaluation::new(dims, &grid.jacobian_patterns())
-        .map_err(|e| Error::task(&spec.origin, "transcription", e.to_string()))?;
-    grid.evaluate(x, false, &mut eval).map_err(|e| Error::task(&spec.origin, "transcription", e))?;
-    let scales = grid.scales();
-    let mut worst: Option<(f64, solve::ConstraintKind, usize)> = None;
-    let mut consider = |v: f64, kind, i| {
-        if worst.is_none_or(|(w, _, _)| v > w) {
-            worst = Some((v, kind, i));
+/// The objective's terms: finite, ≥ 0, one at least positive; the strength term with the torque objective.
+fn check_terms(spec: &Spec, origin: &str) -> Result<()> {
+    for (name, w) in spec.terms.named() {
+        if !(w.is_finite() && w >= 0.0) {
+            return Err(Error::task(origin, format!("objective.terms.{name}"), format!("must be a finite weight ≥ 0, got {w}")));
         }
-    };
-    for (i, h) in eval.h.iter().enumerate() {
-        consider(h.abs() / scales.eq[i], solve::ConstraintKind::Equality, i);
     }
-    for (i, g) in eval.g.iter().enumerate() {
-        consider(g.max(0.0) / scales.ineq[i], solve::ConstraintKind::Inequality, i);
+    if spec.terms.named().iter().all(|(_, w)| *w == 0.0) {
+        return Err(Error::task(origin, "objective.terms", "every weight is 0: there is nothing to minimise"));
     }
-    Ok(worst.map(|(v, kind, i)| {
-        let raw = match kind {
-            solve::ConstraintKind::Equality => eval.h[i],
-            solve::ConstraintKind::Inequality => eval.g[i],
-        };
-        (v, format!("{}: {}", grid.constraint_name(kind, i), grid.violation_in_units(kind, i, raw)))
-    }))
+    if spec.terms.strength > 0.0 && spec.objective != Objective::Torque {
+        let message = "the strength term combines with kind = \"torque\" only (½∫τᵀH⁻¹τ is not diagonal in τ)";
+        return Err(Error::task(origin, "objective.terms.strength", message));
+    }
+    Ok(())
 }
 
 /// The planned motion sampled at `times` (s).

@@ -5,7 +5,7 @@
 
 use super::guess::{initial_x, objective_at};
 use super::multistart::{self, MultiStart, StartReport};
-use super::{check_between_nodes, validate, Plan, SolverKind, Spec, Transcription};
+use super::{validate, Plan, SolverKind, Spec, Transcription};
 use crate::error::{Error, Result};
 use crate::solve::{self, Outcome, Problem, Progress, Settings, Solver, StopReason};
 use std::time::{Duration, Instant};
@@ -37,13 +37,14 @@ pub fn plan_with_starts(
     let runs = multistart::run_all(&guesses, observer, |x, observer| run_start(spec, solver, settings, deadline, x, observer))?;
     let best = multistart::best(&runs);
     let starts = runs.iter().enumerate().map(|(k, r)| StartReport::new(k, multi, &r.outcome, r.polished, r.seconds)).collect();
-    let mut run = runs.into_iter().nth(best).expect("at least one start");
-    name_in_units(&mut run.outcome, &problem);
+    let run = runs.into_iter().nth(best).expect("at least one start");
+    let enforced = super::enforce::enforce(spec, solver, settings, deadline, run, &guesses[best], observer)?;
+    let mut run = enforced.run;
+    name_in_units(&mut run.outcome, &Transcription::new(&enforced.spec)?);
     let nv = spec.model.nv();
     let mut ctrl = vec![0.0; spec.n_ctrl * nv];
     let mut lambda_ctrl = vec![0.0; spec.n_ctrl * problem.layout.n_lambda];
     problem.layout.unpack(&run.outcome.x, &problem.fixed_values, &mut ctrl, &mut lambda_ctrl);
-    let worst_between_nodes = check_between_nodes(spec, &run.outcome.x, 16)?;
     Ok(Plan {
         ctrl,
         lambda_ctrl,
@@ -53,7 +54,9 @@ pub fn plan_with_starts(
         polished: run.polished,
         initial_objective,
         solve_seconds: started.elapsed().as_secs_f64(),
-        worst_between_nodes,
+        between_nodes: enforced.violations,
+        check_nodes: enforced.spec.check_nodes,
+        between_rounds: enforced.rounds,
         starts,
         best_start: best,
         refinement: vec![],
@@ -135,6 +138,6 @@ pub(super) fn run_start(
 }
 
 /// Seconds left before `deadline` (`None`: no limit).
-fn remaining(deadline: Option<Instant>) -> Option<f64> {
+pub(super) fn remaining(deadline: Option<Instant>) -> Option<f64> {
     deadline.map(|d| d.saturating_duration_since(Instant::now()).as_secs_f64())
 }

@@ -213,6 +213,8 @@ pub struct Spec {
     pub objective: Objective,
     /// Per-joint weights of the objective (`W`, diagonal).
     pub weights: Vec<f64>,
+    /// The objective's terms and their weights (default: the torque term alone, weight 1).
+    pub terms: crate::plan::transcription::Terms,
     /// Enforce the model's position limits at the quadrature nodes (default true, as in a task file).
     pub position_limits: bool,
     /// Enforce the model's effort limits `|τ| ≤ effort` at the quadrature nodes (default true, as in a
@@ -230,6 +232,11 @@ pub struct Spec {
     pub obstacles: Vec<Obstacle>,
     /// Distance constraints between bodies and obstacles or other bodies.
     pub collisions: Vec<Collision>,
+    /// The dense check between the nodes, its tolerances in units, and its refinement (default on).
+    pub between_nodes: crate::plan::BetweenNodes,
+    /// Extra nodes where the constraints are imposed (weight 0 in the objective); empty unless the
+    /// refinement between the nodes added some.
+    pub check_nodes: crate::plan::CheckNodes,
 }
 
 /// How a task-space goal constrains the frame's orientation.
@@ -275,8 +282,9 @@ impl Spec {
     }
 
     /// A problem with the task file's defaults (`docs/task-file.md`): the model's position and effort
-    /// limits enforced, `q̇ = 0` at both ends, the torque objective with unit weights, N = 16 control points
-    /// with 4 Gauss–Legendre nodes per span, a linear initial guess, no contacts, balance, loads, obstacles or collision constraints, and the
+    /// limits enforced (and checked between the nodes, refining where they miss), `q̇ = 0` at both ends, the
+    /// torque objective with unit weights, N = 16 control points with 4 Gauss–Legendre nodes per span, a linear
+    /// initial guess, no contacts, balance, loads, obstacles or collision constraints, and the
     /// model's gravity (earth, `[0, 0, −9.81]` m/s², unless the model says otherwise). Set
     /// `position_limits`/`torque_limits` to `false` for an unconstrained problem.
     pub fn new(model: Model, start: Vec<f64>, goal: Vec<f64>, duration: f64) -> Spec {
@@ -295,6 +303,7 @@ impl Spec {
             nodes_per_span: 4,
             objective: Objective::Torque,
             weights: vec![1.0; nv],
+            terms: Default::default(),
             position_limits: true,
             torque_limits: true,
             contacts: vec![],
@@ -303,6 +312,8 @@ impl Spec {
             initial_guess: InitialGuess::Linear,
             obstacles: vec![],
             collisions: vec![],
+            between_nodes: crate::plan::BetweenNodes::default(),
+            check_nodes: crate::plan::CheckNodes::default(),
         }
     }
 }

@@ -4,7 +4,7 @@
 
 use super::{load, Result};
 use crate::error::Error;
-use crate::plan::{task::Task, InitialGuess, MultiStart, Transcription};
+use crate::plan::{task::Task, CheckNodes, InitialGuess, MultiStart, Transcription};
 use crate::solve::Problem;
 use std::path::Path;
 
@@ -27,6 +27,9 @@ pub fn warm_start(task: &mut Task, dir: &Path) -> Result<()> {
             record.n_ctrl, spec.n_ctrl, record.n_ctrl
         ));
     }
+    // The plan's check nodes (where it was refined between the nodes) come along: its multipliers have them.
+    task.spec.check_nodes = CheckNodes { limits: record.check_nodes.clone(), closures: record.closure_nodes.clone() };
+    let spec = &task.spec;
     let problem = Transcription::new(spec)?;
     if record.lambda_ctrl.len() != spec.n_ctrl * problem.layout.n_lambda {
         return refuse("its contacts are not the task's".into());

@@ -193,7 +193,9 @@ fn joint_panel<DB: DrawingBackend>(
         |samples: &[SampleRecord]| -> Vec<(f64, f64)> { samples.iter().map(|s| (s.t, quantity.value(s, i) * factor)).collect() };
     let planned = series(&record.samples);
     let guessed = guess.map(series).unwrap_or_default();
-    let limit = (quantity == Quantity::Torque).then_some(joint.limits.effort).filter(|e| e.is_finite() && *e > 0.0);
+    // The band [−τ⁻, τ⁺] (the limits of the two directions), drawn when both are finite and on scale.
+    let (up, down) = (joint.limits.effort_toward(true), joint.limits.effort_toward(false));
+    let limit = (quantity == Quantity::Torque).then_some(up.max(down)).filter(|e| e.is_finite() && *e > 0.0);
     // The plan sets the scale: an initial guess far off it (a kinematic guess can need ten times the torque)
     // would flatten the plan into a line. Where the guess leaves the scale it is cut, and the caption says so.
     let peak = planned.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
@@ -202,7 +204,8 @@ fn joint_panel<DB: DrawingBackend>(
     if let (Some(l), None) = (limit, limit_on_scale) {
         caption.push_str(&format!(" — strength ±{l:.0} {unit}, off scale"));
     }
-    let band_edges = limit_on_scale.map_or(vec![], |l| vec![-l, l]);
+    let band = limit_on_scale.filter(|_| up.is_finite() && down.is_finite()).map(|_| (-down, up));
+    let band_edges = band.map_or(vec![], |(lo, hi)| vec![lo, hi]);
     let y = padded_range(planned.iter().map(|p| p.1).chain(band_edges));
     let (y, guess_cut) = guess_scale(y, &guessed);
     if guess_cut {
@@ -225,8 +228,8 @@ fn joint_panel<DB: DrawingBackend>(
         .light_line_style(WHITE.mix(0.0))
         .draw()
         .map_err(drawing_error)?;
-    if let Some(l) = limit_on_scale {
-        draw_strength_band(&mut chart, x, l, i == 0)?;
+    if let Some(edges) = band {
+        draw_strength_band(&mut chart, x, edges, i == 0)?;
     }
     let line = chart.draw_series(LineSeries::new(planned, PLANNED.stroke_width(2))).map_err(drawing_error)?;
     line.label("planned").legend(|(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], PLANNED.stroke_width(2)));
@@ -279,17 +282,17 @@ fn inside_runs(points: &[(f64, f64)], (lo, hi): (f64, f64)) -> Vec<Vec<(f64, f64
     runs
 }
 
-/// The band `|τ| ≤ limit` shaded, and its edges.
+/// The band `−τ⁻ ≤ τ ≤ τ⁺` shaded, and its edges.
 fn draw_strength_band<DB: DrawingBackend>(
     chart: &mut ChartContext<DB, Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>>,
     (t0, t1): (f64, f64),
-    limit: f64,
+    (low, high): (f64, f64),
     with_legend: bool,
 ) -> Result<()> {
     chart
-        .draw_series(std::iter::once(Rectangle::new([(t0, -limit), (t1, limit)], ALLOWED_BAND.mix(0.12).filled())))
+        .draw_series(std::iter::once(Rectangle::new([(t0, low), (t1, high)], ALLOWED_BAND.mix(0.12).filled())))
         .map_err(drawing_error)?;
-    for edge in [limit, -limit] {
+    for edge in [high, low] {
         let drawn = chart
             .draw_series(LineSeries::new([(t0, edge), (t1, edge)], LIMIT.mix(0.8).stroke_width(1)))
             .map_err(drawing_error)?;

@@ -83,6 +83,13 @@ pub struct PlanRecord {
     /// The Lagrange multipliers at the plan (problem units), for a warm start; absent in older files.
     #[serde(default)]
     pub multipliers: Option<crate::solve::Multipliers>,
+    /// The check nodes the refinement between the nodes added (s), which the multipliers include; absent
+    /// in older files.
+    #[serde(default)]
+    pub check_nodes: Vec<f64>,
+    /// The loop-closure nodes it added (s).
+    #[serde(default)]
+    pub closure_nodes: Vec<f64>,
     /// The motion sampled at the output's sample rate.
     pub samples: Vec<SampleRecord>,
 }
@@ -119,6 +126,8 @@ impl PlanRecord {
             collision_shapes: super::solids::capsule_records(spec),
             converged: plan.converged(),
             multipliers: Some(plan.outcome.multipliers.clone()),
+            check_nodes: plan.check_nodes.limits.clone(),
+            closure_nodes: plan.check_nodes.closures.clone(),
             samples: samples.iter().map(SampleRecord::from).collect(),
         }
     }

@@ -12,8 +12,11 @@ pub struct Summary {
     pub reason: String,
     /// The objective's value: `½∫τᵀWτ dt` of the active torques (N²·m²·s), or `½∫τᵀH⁻¹τ dt`.
     pub objective: f64,
-    /// Which objective: "½∫τᵀWτ dt" or "½∫τᵀH⁻¹τ dt".
+    /// Which objective: "½∫τᵀWτ dt" or "½∫τᵀH⁻¹τ dt", with the other terms' weights when there are any.
     pub objective_kind: String,
+    /// The objective's terms with a positive weight: each one's weight and value (the discrete integral
+    /// minimised, before its weight); `objective` is `Σ weight · value`.
+    pub objective_terms: Vec<TermSummary>,
     /// The same for the initial guess.
     pub initial_guess_objective: f64,
     /// The solver, as [`crate::plan::SolverKind::name`] describes it.
@@ -38,8 +41,8 @@ pub struct Summary {
     pub gravity_m_s2: [f64; 3],
     /// Worst scaled constraint violation at the quadrature nodes, and which constraint.
     pub worst_violation_at_nodes: Option<Violation>,
-    /// The same on a dense grid between the nodes.
-    pub worst_violation_between_nodes: Option<Violation>,
+    /// The dense check between the nodes, in physical units.
+    pub between_nodes: BetweenNodesSummary,
     /// Peak torques, per joint.
     pub joints: Vec<JointSummary>,
     /// Peak forces and drift, per contact.
@@ -52,6 +55,37 @@ pub struct Summary {
     pub refinement: Vec<crate::plan::Level>,
     /// The relative change of the effort at the last refinement: the discretisation's error estimate.
     pub effort_change_last_refinement: Option<f64>,
+}
+
+/// One term of the objective.
+#[derive(Serialize, Debug, Clone)]
+pub struct TermSummary {
+    /// Its name in the task file (`torque`, `strength`, `torque_change`, `acceleration`, `jerk`).
+    pub name: String,
+    /// Its formula.
+    pub formula: String,
+    /// Its weight.
+    pub weight: f64,
+    /// Its value (before the weight).
+    pub value: f64,
+}
+
+/// The objective's terms with a positive weight, evaluated at the plan's unknowns.
+fn terms_of(spec: &Spec, plan: &Plan) -> Vec<TermSummary> {
+    let Ok(mut t) = crate::plan::Transcription::new(spec) else { return vec![] };
+    let Ok(values) = t.term_values(&plan.x) else { return vec![] };
+    let inverse = spec.objective == crate::plan::Objective::TorqueInverseInertia;
+    values
+        .iter()
+        .zip(crate::plan::Terms::FORMULAS)
+        .filter(|((_, w, _), _)| *w > 0.0)
+        .map(|((name, weight, value), formula)| TermSummary {
+            name: name.to_string(),
+            formula: if inverse && *name == "torque" { "½∫τᵀH⁻¹τ dt".into() } else { formula.to_string() },
+            weight: *weight,
+            value: *value,
+        })
+        .collect()
 }
 
 /// How the time integral is discretised.
@@ -74,6 +108,24 @@ pub struct Violation {
     pub constraint: String,
 }
 
+/// The dense check between the nodes (`plan::between`): what still misses its tolerance, in units.
+#[derive(Serialize, Debug, Clone)]
+pub struct BetweenNodesSummary {
+    /// Whether every limit holds within its tolerance on the dense grid.
+    pub holds: bool,
+    /// Check times per knot span.
+    pub per_span: usize,
+    /// Rounds of refinement made (check nodes added, warm re-solves).
+    pub rounds: usize,
+    /// Check nodes added by the refinement (inequality nodes, s).
+    pub check_nodes: Vec<f64>,
+    /// Loop-closure nodes added by the refinement (s).
+    pub closure_nodes: Vec<f64>,
+    /// Every row group still missing its tolerance, worst first: constraint, time (s), value, limit,
+    /// excess and tolerance in `unit`.
+    pub violations: Vec<crate::plan::NodeViolation>,
+}
+
 /// The demands of the plan on one joint.
 #[derive(Serialize, Debug, Clone)]
 pub struct JointSummary {
@@ -83,8 +135,12 @@ pub struct JointSummary {
     pub peak_abs_torque: f64,
     /// When the peak torque occurs (s).
     pub peak_time_s: f64,
-    /// The joint's effort limit, if any.
+    /// The joint's effort limit, if any (the larger direction's when they differ).
     pub torque_limit: Option<f64>,
+    /// The limit of the torque along `+axis`, if any.
+    pub torque_limit_positive: Option<f64>,
+    /// The limit of the torque along `−axis` (a magnitude), if any.
+    pub torque_limit_negative: Option<f64>,
 }
 
 /// The demands of the plan on one contact.
@@ -114,7 +170,9 @@ impl Summary {
                     name: j.name.clone(),
                     peak_abs_torque: peak,
                     peak_time_s: t,
-                    torque_limit: j.limits.effort.is_finite().then_some(j.limits.effort),
+                    torque_limit: Some(j.limits.effort_max()).filter(|e| e.is_finite()),
+                    torque_limit_positive: Some(j.limits.effort_toward(true)).filter(|e| e.is_finite()),
+                    torque_limit_negative: Some(j.limits.effort_toward(false)).filter(|e| e.is_finite()),
                 }
             })
             .collect();
@@ -142,9 +200,11 @@ impl Summary {
             reason: o.reason.to_string(),
             objective: o.objective,
             objective_kind: match spec.objective {
+                _ if spec.terms != crate::plan::Terms::default() => "Σ weight × term (objective_terms)".into(),
                 crate::plan::Objective::Torque => "½∫τᵀWτ dt".into(),
                 crate::plan::Objective::TorqueInverseInertia => "½∫τᵀH⁻¹τ dt".into(),
             },
+            objective_terms: terms_of(spec, plan),
             initial_guess_objective: plan.initial_objective,
             solver: if plan.polished { format!("{} + BFGS polish", plan.solver.name()) } else { plan.solver.name().to_string() },
             iterations: o.iterations,
@@ -164,10 +224,14 @@ impl Summary {
                 .worst_constraint
                 .as_ref()
                 .map(|c| Violation { value: o.worst_violation, constraint: c.name.clone() }),
-            worst_violation_between_nodes: plan
-                .worst_between_nodes
-                .as_ref()
-                .map(|(v, n)| Violation { value: *v, constraint: n.clone() }),
+            between_nodes: BetweenNodesSummary {
+                holds: plan.between_nodes.is_empty(),
+                per_span: spec.between_nodes.per_span,
+                rounds: plan.between_rounds,
+                check_nodes: plan.check_nodes.limits.clone(),
+                closure_nodes: plan.check_nodes.closures.clone(),
+                violations: plan.between_nodes.clone(),
+            },
             joints,
             contacts,
             starts: plan.starts.clone(),
@@ -193,6 +257,11 @@ pub fn text_table(s: &Summary) -> String {
         s.objective,
         s.initial_guess_objective
     );
+    if s.objective_terms.iter().any(|t| t.name != "torque" || t.weight != 1.0) {
+        let each: Vec<String> =
+            s.objective_terms.iter().map(|t| format!("{} × {} = {:.6e}", t.weight, t.formula, t.value)).collect();
+        let _ = writeln!(out, "objective terms: {}", each.join(" + "));
+    }
     if s.refinement.len() > 1 {
         let levels: Vec<String> = s
             .refinement
@@ -216,7 +285,10 @@ pub fn text_table(s: &Summary) -> String {
     let width = s.joints.iter().map(|j| j.name.len()).max().unwrap_or(5).max(5);
     let _ = writeln!(out, "{:width$}  {:>12}  {:>8}  {:>10}", "joint", "peak |τ|", "at (s)", "limit");
     for j in &s.joints {
-        let limit = j.torque_limit.map(|l| format!("{l:.1}")).unwrap_or_else(|| "-".into());
+        let limit = match (j.torque_limit_negative, j.torque_limit_positive) {
+            (Some(n), Some(p)) if n != p => format!("−{n:.1}/+{p:.1}"),
+            (n, p) => j.torque_limit.or(n).or(p).map(|l| format!("{l:.1}")).unwrap_or_else(|| "-".into()),
+        };
         let _ = writeln!(out, "{:width$}  {:>12.3}  {:>8.3}  {:>10}", j.name, j.peak_abs_torque, j.peak_time_s, limit);
     }
     for c in &s.contacts {
@@ -229,14 +301,24 @@ pub fn text_table(s: &Summary) -> String {
             c.max_drift_m * 1e3
         );
     }
-    match &s.worst_violation_between_nodes {
-        Some(v) if v.value > 0.0 => {
-            let _ = writeln!(out, "worst constraint between nodes: {} (scaled {:.2e})", v.constraint, v.value);
+    let b = &s.between_nodes;
+    let added = b.check_nodes.len() + b.closure_nodes.len();
+    let refined = if b.rounds > 0 {
+        format!(", after {} round(s) of refinement adding {added} check nodes", b.rounds)
+    } else {
+        String::new()
+    };
+    if b.holds {
+        let _ = writeln!(
+            out,
+            "every limit holds between the nodes within its tolerance ({} points per knot span{refined})",
+            b.per_span
+        );
+    } else {
+        let _ = writeln!(out, "limits missed between the nodes ({} points per knot span{refined}):", b.per_span);
+        for v in &b.violations {
+            let _ = writeln!(out, "  {v}");
         }
-        Some(_) => {
-            let _ = writeln!(out, "every constraint holds between the nodes too (16 points per knot span)");
-        }
-        None => {}
     }
     out
 }

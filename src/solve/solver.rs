@@ -136,6 +136,9 @@ pub enum StopReason {
     EvaluationError(String),
     /// The problem's description or the arguments do not hang together (sizes, patterns, scales).
     InvalidInput(String),
+    /// The solve converged at its nodes, but a limit is missed between them by more than its tolerance
+    /// (set by the planner's dense check, `plan::between`): which, where and by how much, in units.
+    BetweenNodes(String),
 }
 
 impl fmt::Display for StopReason {
@@ -151,6 +154,7 @@ impl fmt::Display for StopReason {
             StopReason::TimeLimit => f.write_str("time limit reached"),
             StopReason::EvaluationError(m) => write!(f, "evaluation failed: {m}"),
             StopReason::InvalidInput(m) => write!(f, "invalid problem: {m}"),
+            StopReason::BetweenNodes(m) => write!(f, "limits missed between the nodes: {m}"),
         }
     }
 }

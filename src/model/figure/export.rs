@@ -160,6 +160,11 @@ fn dof_fields(j: &Joint) -> Vec<String> {
     if l.effort.is_finite() {
         f.push(format!("effort = {}", num(l.effort)));
     }
+    for (name, v) in [("effort_positive", l.effort_positive), ("effort_negative", l.effort_negative)] {
+        if let Some(v) = v {
+            f.push(format!("{name} = {}", num(v)));
+        }
+    }
     let p = &j.passive;
     if p.stiffness != 0.0 {
         f.push(format!("stiffness = {}", num(p.stiffness)));

@@ -145,6 +145,8 @@ pub(super) struct RawJoint {
     pub(super) upper: Option<f64>,
     pub(super) velocity: Option<f64>,
     pub(super) effort: Option<f64>,
+    pub(super) effort_positive: Option<f64>,
+    pub(super) effort_negative: Option<f64>,
     pub(super) stiffness: Option<f64>,
     pub(super) rest_deg: Option<f64>,
     pub(super) rest: Option<f64>,
@@ -180,17 +182,31 @@ pub(super) enum JointContext {
 
 impl JointContext {
     pub(super) fn allowed(self) -> &'static [&'static str] {
-        const DOF: [&str; 4] = ["axis", "velocity", "effort", "damping"];
+        const DOF: [&str; 6] = ["axis", "velocity", "effort", "effort_positive", "effort_negative", "damping"];
         match self {
             JointContext::Fixed => &["name", "type", "origin"],
             JointContext::Anatomical => &["name", "type", "origin", "axes"],
-            JointContext::Revolute => {
-                &["name", "type", "origin", DOF[0], DOF[1], DOF[2], DOF[3], "lower_deg", "upper_deg", "stiffness", "rest_deg"]
-            }
+            JointContext::Revolute => &[
+                "name",
+                "type",
+                "origin",
+                DOF[0],
+                DOF[1],
+                DOF[2],
+                DOF[3],
+                DOF[4],
+                DOF[5],
+                "lower_deg",
+                "upper_deg",
+                "stiffness",
+                "rest_deg",
+            ],
             JointContext::Prismatic => {
-                &["name", "type", "origin", DOF[0], DOF[1], DOF[2], DOF[3], "lower", "upper", "stiffness", "rest"]
+                &["name", "type", "origin", DOF[0], DOF[1], DOF[2], DOF[3], DOF[4], DOF[5], "lower", "upper", "stiffness", "rest"]
             }
-            JointContext::Axis => &["label", DOF[0], DOF[1], DOF[2], DOF[3], "lower_deg", "upper_deg", "stiffness", "rest_deg"],
+            JointContext::Axis => {
+                &["label", DOF[0], DOF[1], DOF[2], DOF[3], DOF[4], DOF[5], "lower_deg", "upper_deg", "stiffness", "rest_deg"]
+            }
         }
     }
 
@@ -219,7 +235,7 @@ impl JointContext {
 impl RawJoint {
     /// The names of the fields present, in schema order.
     pub(super) fn present(&self) -> Vec<&'static str> {
-        let fields: [(&'static str, bool); 16] = [
+        let fields: [(&'static str, bool); 18] = [
             ("name", self.name.is_some()),
             ("type", self.kind.is_some()),
             ("origin", self.origin.is_some()),
@@ -232,6 +248,8 @@ impl RawJoint {
             ("upper", self.upper.is_some()),
             ("velocity", self.velocity.is_some()),
             ("effort", self.effort.is_some()),
+            ("effort_positive", self.effort_positive.is_some()),
+            ("effort_negative", self.effort_negative.is_some()),
             ("stiffness", self.stiffness.is_some()),
             ("rest_deg", self.rest_deg.is_some()),
             ("rest", self.rest.is_some()),
@@ -248,6 +266,8 @@ impl RawJoint {
             upper: deg(self.upper_deg).or(self.upper).unwrap_or(f64::INFINITY),
             velocity: self.velocity.unwrap_or(f64::INFINITY),
             effort: self.effort.unwrap_or(f64::INFINITY),
+            effort_positive: self.effort_positive,
+            effort_negative: self.effort_negative,
         }
     }
 

@@ -92,6 +92,11 @@ fn constraints(file: &TaskFile, at: &At) -> Result<()> {
     for (name, lim) in &c.torque_limit {
         at(&format!("constraints.torque_limit.{name}"), positive(&ranges::EFFORT, *lim))?;
     }
+    for (key, map) in [("positive", &c.torque_limit_positive), ("negative", &c.torque_limit_negative)] {
+        for (name, lim) in map {
+            at(&format!("constraints.torque_limit_{key}.{name}"), ranges::EFFORT.check(*lim))?;
+        }
+    }
     for (k, cs) in c.contact.iter().enumerate() {
         let field = format!("constraints.contact[{k}]");
         if let Some(t) = &cs.target {

@@ -39,6 +39,7 @@ pub fn resolve(file: &TaskFile, base: &Path, origin: &str) -> Result<Spec> {
     let c = &file.constraints;
     let obstacles = super::solids::obstacles(&env.obstacle, origin)?;
     let collisions = super::solids::collisions(&model, &c.collision, &obstacles, origin)?;
+    crate::plan::between::check_settings(&c.between_nodes, origin)?;
     let mut spec = Spec {
         origin: origin.to_string(),
         gravity,
@@ -52,6 +53,7 @@ pub fn resolve(file: &TaskFile, base: &Path, origin: &str) -> Result<Spec> {
         nodes_per_span: file.discretization.nodes_per_span,
         objective,
         weights,
+        terms: file.objective.terms,
         position_limits: c.position_limits,
         torque_limits: c.torque_limits,
         contacts,
@@ -60,6 +62,8 @@ pub fn resolve(file: &TaskFile, base: &Path, origin: &str) -> Result<Spec> {
         initial_guess,
         obstacles,
         collisions,
+        between_nodes: c.between_nodes,
+        check_nodes: Default::default(),
         model,
     };
     super::goals::goal_postures(&mut spec, origin)?;
@@ -210,7 +214,15 @@ fn limits(model: &mut Model, c: &ConstraintsSection, origin: &str) -> Result<()>
     }
     for (name, lim) in &c.torque_limit {
         let i = dof(model, name, &format!("constraints.torque_limit.{name}"), origin)?;
-        model.joints[i + 1].limits.effort = *lim;
+        let limits = &mut model.joints[i + 1].limits;
+        (limits.effort, limits.effort_positive, limits.effort_negative) = (*lim, None, None);
+    }
+    for (positive, map, key) in [(true, &c.torque_limit_positive, "positive"), (false, &c.torque_limit_negative, "negative")] {
+        for (name, lim) in map {
+            let i = dof(model, name, &format!("constraints.torque_limit_{key}.{name}"), origin)?;
+            let limits = &mut model.joints[i + 1].limits;
+            *(if positive { &mut limits.effort_positive } else { &mut limits.effort_negative }) = Some(*lim);
+        }
     }
     Ok(())
 }

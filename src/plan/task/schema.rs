@@ -290,9 +290,16 @@ pub struct ConstraintsSection {
     /// Overrides: joint → [lower, upper] in degrees (metres for prismatic).
     #[serde(default, deserialize_with = "exact::map")]
     pub position_limit: BTreeMap<String, [f64; 2]>,
-    /// Overrides: joint → |τ| limit in N·m (N for prismatic).
+    /// Overrides: joint → |τ| limit in N·m (N for prismatic), both directions (replaces the model's
+    /// per-direction limits of that joint).
     #[serde(default)]
     pub torque_limit: BTreeMap<String, f64>,
+    /// Overrides: joint → limit of the torque along `+axis` (N·m, N for prismatic), after `torque_limit`.
+    #[serde(default)]
+    pub torque_limit_positive: BTreeMap<String, f64>,
+    /// Overrides: joint → limit of the torque along `−axis` (a magnitude, N·m, N for prismatic).
+    #[serde(default)]
+    pub torque_limit_negative: BTreeMap<String, f64>,
     /// `[[constraints.contact]]`: frames held by the environment (eq. 13).
     #[serde(default)]
     pub contact: Vec<ContactSpec>,
@@ -301,6 +308,10 @@ pub struct ConstraintsSection {
     /// `[[constraints.collision]]`: bodies kept at a distance from obstacles or other bodies.
     #[serde(default)]
     pub collision: Vec<CollisionSpec>,
+    /// `[constraints.between_nodes]`: the dense check between the nodes, its tolerances in physical units,
+    /// and its refinement (default on).
+    #[serde(default)]
+    pub between_nodes: crate::plan::BetweenNodes,
 }
 
 impl Default for ConstraintsSection {
@@ -310,9 +321,12 @@ impl Default for ConstraintsSection {
             torque_limits: true,
             position_limit: BTreeMap::new(),
             torque_limit: BTreeMap::new(),
+            torque_limit_positive: BTreeMap::new(),
+            torque_limit_negative: BTreeMap::new(),
             contact: vec![],
             balance: None,
             collision: vec![],
+            between_nodes: crate::plan::BetweenNodes::default(),
         }
     }
 }
@@ -373,6 +387,10 @@ pub struct ObjectiveSection {
     /// Joint → weight (default 1).
     #[serde(default)]
     pub weights: BTreeMap<String, f64>,
+    /// The terms and their weights, e.g. `{ torque = 1.0, torque_change = 0.01, jerk = 1e-4 }` (default:
+    /// `torque = 1` alone; docs/task-file.md).
+    #[serde(default)]
+    pub terms: crate::plan::Terms,
 }
 
 fn torque() -> String {
@@ -381,7 +399,7 @@ fn torque() -> String {
 
 impl Default for ObjectiveSection {
     fn default() -> Self {
-        ObjectiveSection { kind: torque(), weights: BTreeMap::new() }
+        ObjectiveSection { kind: torque(), weights: BTreeMap::new(), terms: Default::default() }
     }
 }
 

@@ -151,6 +151,11 @@ impl Transcription<'_> {
         }
     }
 
+    /// The margin (m) of collision row `p`.
+    pub(super) fn collision_margin(&self, p: usize) -> f64 {
+        self.spec.collisions[self.collisions.pairs[p].constraint].margin
+    }
+
     /// A collision row's violation for a person: the depth of a penetration, or how far inside the margin.
     pub(super) fn collision_violation(&self, p: usize, raw: f64) -> String {
         let margin = self.spec.collisions[self.collisions.pairs[p].constraint].margin;

@@ -126,7 +126,7 @@ impl Transcription<'_> {
                 IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) => {
                     let upper = matches!(row, IneqRow::UpperTorque(_));
                     let sign = if upper { 1.0 } else { -1.0 };
-                    out.g[gi] = sign * w.tau[i] - self.effort[i];
+                    out.g[gi] = sign * w.tau[i] - self.effort[usize::from(!upper)][i];
                     if want_jac {
                         Self::chain_rule(&self.layout, &basis, sign, w.torque_row(i, nv, nl), out.jg.row_values_mut(gi));
                     }
@@ -213,7 +213,7 @@ impl Transcription<'_> {
             }
             IneqRow::UpperPosition(_) | IneqRow::LowerPosition(_) => format!("{}° past the limit", num(raw.to_degrees())),
             IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) => {
-                let limit = self.effort[i];
+                let limit = self.torque_bound(i, matches!(row, IneqRow::UpperTorque(_)));
                 let unit = if prismatic(i) { "N" } else { "N·m" };
                 format!("{} {unit} over the {limit:.1} {unit} limit ({} %)", num(raw), num(100.0 * raw / limit))
             }

@@ -43,7 +43,7 @@ pub(super) struct HessianWork {
     /// `∇²φ`, `d × d` row-major, `d = 3nv + n_λ`.
     s: Vec<f64>,
     /// Per-node weights: `ω` (nv) and `ω_W`.
-    omega: Vec<f64>,
+    pub(super) omega: Vec<f64>,
     omega_w: [f64; 6],
     /// The node's unknowns: global column, and up to three (z index, coefficient) pairs.
     local: Vec<LocalUnknown>,
@@ -111,10 +111,18 @@ impl Transcription<'_> {
     fn node_weights(&mut self, k: usize, w_r: &[f64], w_g: &[f64]) -> bool {
         let nv = self.layout.nv;
         let sw = self.nodes.w[k].sqrt();
-        let h = &mut self.hess;
-        for l in 0..nv {
-            h.omega[l] = w_r[k * nv + l] * sw * self.sqrt_weights[l];
+        // The node residual is f(τ_l) τ_l with f constant on each side of 0 (the strength term's bound per
+        // direction): the sign of τ at the node picks f.
+        let by_sign = self.spec.terms.strength > 0.0 && self.asymmetric_limits();
+        if by_sign {
+            self.eval_node(k, false);
         }
+        for l in 0..nv {
+            let f = self.torque_factor(l, if by_sign { self.work.tau[l] } else { 1.0 });
+            self.hess.omega[l] = w_r[k * nv + l] * sw * f;
+        }
+        self.torque_change_weights(k, w_r);
+        let h = &mut self.hess;
         h.omega_w = [0.0; 6];
         let per = self.ineq_rows.len();
         for (r, row) in self.ineq_rows.iter().enumerate() {

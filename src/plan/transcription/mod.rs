@@ -21,7 +21,9 @@ pub(crate) mod collision;
 mod constraints;
 pub mod goals;
 mod hessian;
+mod measure;
 mod objective;
+mod terms;
 
 use super::spec::{Objective, Spec};
 use crate::dynamics::point_force::{add_generalized_force, generalized_force_derivative, path_dofs, point_jacobian};
@@ -30,6 +32,8 @@ use crate::solve::{ConstraintKind, Dims, Evaluation, Patterns, Problem, RowFamil
 use crate::spatial::{Force, Vec3};
 use crate::trajectory::bspline::{BasisAt, CubicBSpline, Nodes};
 pub use constraints::IneqRow;
+pub use measure::{Measured, RowKind};
+pub use terms::Terms;
 
 /// Where each control point's unknowns sit in `x`.
 #[derive(Clone, Debug)]
@@ -148,6 +152,13 @@ struct Derivatives<'a> {
 }
 
 impl NodeWork {
+    /// The objective's residual and its derivatives times `s`.
+    fn scale_residual(&mut self, s: f64) {
+        for v in [&mut self.res, &mut self.rdq, &mut self.rdv, &mut self.rda, &mut self.rdl] {
+            v.iter_mut().for_each(|x| *x *= s);
+        }
+    }
+
     /// The derivatives of the objective's residual `l` at this node.
     fn residual_row(&self, l: usize, nv: usize, nl: usize) -> Derivatives<'_> {
         Derivatives {
@@ -200,10 +211,12 @@ pub struct Transcription<'s> {
     contacts: Vec<ContactInfo>,
     load_paths: Vec<Vec<usize>>,
     n_eq_node: usize,
-    sqrt_weights: Vec<f64>,
+    /// The objective's terms' rows and scratch.
+    terms: terms::TermWork,
     limits_low: Vec<f64>,
     limits_up: Vec<f64>,
-    effort: Vec<f64>,
+    /// Effort limits along `+axis` and `−axis` (magnitudes) per joint.
+    effort: [Vec<f64>; 2],
     total_weight: f64,
     collisions: collision::Collisions,
     // scratch, allocated once
@@ -268,8 +281,25 @@ impl<'s> Transcription<'s> {
         let mut times: Vec<f64> = (1..n).map(|k| k as f64 * h).collect();
         times.insert(0, h / 2.0);
         times.push(spline.duration() - h / 2.0);
-        let contact_nodes = spline.grid(&times)?;
-        Ok(Self::with_nodes(spec, spline, nodes, contact_nodes))
+        let mut contact_nodes = spline.grid(&times)?;
+        // The refinement's check nodes come last, so that the other rows keep their indices.
+        let ordered = nodes.t.len();
+        append(&mut nodes, spline.grid(&spec.check_nodes.limits)?);
+        append(&mut contact_nodes, spline.grid(&spec.check_nodes.closures)?);
+        let mut t = Self::with_nodes(spec, spline, nodes, contact_nodes);
+        // The ends and the Gauss nodes are in time order: the torque-change rows join them.
+        t.terms = terms::TermWork::new(&t, ordered);
+        Ok(t)
+    }
+
+    /// Joint `i`'s effort limit along `+axis` (`upper`) or `−axis`, a magnitude (N·m or N).
+    pub fn torque_bound(&self, i: usize, upper: bool) -> f64 {
+        self.effort[usize::from(!upper)][i]
+    }
+
+    /// Equality rows per contact node (the contact-force components).
+    pub fn n_eq_per_node(&self) -> usize {
+        self.n_eq_node
     }
 
     /// The problem evaluated at the times `times` (s) instead of its quadrature nodes — every row, contacts
@@ -309,7 +339,8 @@ impl<'s> Transcription<'s> {
             fixed_values[j * nv..(j + 1) * nv].copy_from_slice(end);
         }
         let (limits_low, limits_up): (Vec<f64>, Vec<f64>) = model.position_limits();
-        let effort: Vec<f64> = model.joints[1..].iter().map(|j| j.limits.effort).collect();
+        let effort: [Vec<f64>; 2] =
+            [true, false].map(|up| model.joints[1..].iter().map(|j| j.limits.effort_toward(up)).collect());
         let mut ineq_rows = Vec::new();
         if spec.position_limits {
             for i in 0..nv {
@@ -323,8 +354,10 @@ impl<'s> Transcription<'s> {
         }
         if spec.torque_limits {
             for i in 0..nv {
-                if effort[i].is_finite() {
+                if effort[0][i].is_finite() {
                     ineq_rows.push(IneqRow::UpperTorque(i));
+                }
+                if effort[1][i].is_finite() {
                     ineq_rows.push(IneqRow::LowerTorque(i));
                 }
             }
@@ -373,9 +406,9 @@ impl<'s> Transcription<'s> {
             rdl: vec![0.0; nv * n_lambda],
         };
         let goals = goals::Goals::new(spec, &spline);
-        Transcription {
+        let mut t = Transcription {
             n_eq_node: n_lambda,
-            sqrt_weights: spec.weights.iter().map(|w| w.sqrt()).collect(),
+            terms: terms::TermWork::default(),
             data: Data::new(model),
             ctrl: vec![0.0; spec.n_ctrl * nv],
             lam_ctrl: vec![0.0; spec.n_ctrl * n_lambda],
@@ -396,7 +429,9 @@ impl<'s> Transcription<'s> {
             work,
             hess: hessian::HessianWork::new(nv, n_lambda),
             goals,
-        }
+        };
+        t.terms = terms::TermWork::new(&t, 0);
+        t
     }
 
     /// Degrees of freedom.
@@ -527,7 +562,8 @@ impl<'s> Transcription<'s> {
         match spec.objective {
             Objective::Torque => {
                 for l in 0..nv {
-                    let s = self.sqrt_weights[l];
+                    let s = self.torque_factor(l, self.work.tau[l]);
+                    let w = &mut self.work;
                     w.res[l] = s * w.tau[l];
                     if jac {
                         for c in 0..nv {
@@ -541,7 +577,10 @@ impl<'s> Transcription<'s> {
                     }
                 }
             }
-            Objective::TorqueInverseInertia => objective::inverse_inertia_residual(model, data, w, nv, nl, jac),
+            Objective::TorqueInverseInertia => {
+                objective::inverse_inertia_residual(model, &mut self.data, &mut self.work, nv, nl, jac);
+                self.work.scale_residual(spec.terms.torque.sqrt());
+            }
         }
     }
 
@@ -598,6 +637,11 @@ impl Transcription<'_> {
         (index / per, self.ineq_rows[index % per])
     }
 
+    /// `true` when the effort limits of some joint differ by direction.
+    fn asymmetric_limits(&self) -> bool {
+        self.effort[0] != self.effort[1]
+    }
+
     /// Starts a solve-independent evaluation: the control points of `x`.
     pub fn set_x(&mut self, x: &[f64]) {
         self.layout.unpack(x, &self.fixed_values, &mut self.ctrl, &mut self.lam_ctrl);
@@ -609,7 +653,7 @@ impl Problem for Transcription<'_> {
         let nn = self.n_nodes();
         Dims {
             n: self.layout.n,
-            n_res: nn * self.layout.nv,
+            n_res: self.terms.n_res(),
             n_eq: self.n_contact_eq(),
             n_ineq: nn * self.n_ineq_node() + self.goals.n_rows(),
         }
@@ -643,6 +687,7 @@ impl Problem for Transcription<'_> {
             }
         }
         p.g.extend(self.goal_patterns());
+        self.term_patterns(&mut p);
         p
     }
 
@@ -664,8 +709,10 @@ impl Problem for Transcription<'_> {
                 }
             }
             self.inequality_rows(k, want_jac, out);
+            self.term_rows(k, want_jac, out);
         }
         self.goal_rows(self.n_nodes() * self.n_ineq_node(), want_jac, out);
+        self.jerk_rows(want_jac, out);
         Ok(())
     }
 
@@ -691,7 +738,8 @@ impl Problem for Transcription<'_> {
                         1.0
                     }
                 }
-                IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) => self.effort[i].max(1e-9),
+                IneqRow::UpperTorque(i) => self.torque_bound(i, true).max(1e-9),
+                IneqRow::LowerTorque(i) => self.torque_bound(i, false).max(1e-9),
                 IneqRow::Push(_) | IneqRow::Friction(..) => self.total_weight.max(1.0),
                 IneqRow::Balance(4) => self.total_weight.max(1.0),
                 IneqRow::Balance(_) => (0.1 * self.total_weight).max(1.0),
@@ -752,6 +800,13 @@ impl Problem for Transcription<'_> {
             }
         }
     }
+}
+
+/// `nodes` followed by `more` (weight 0).
+fn append(nodes: &mut Nodes, more: Nodes) {
+    nodes.t.extend(more.t);
+    nodes.w.extend(more.w);
+    nodes.basis.extend(more.basis);
 }
 
 /// Everything known about the motion at one time.

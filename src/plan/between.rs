@@ -1,0 +1,245 @@
+//! Limits that hold between the nodes. The solver imposes every constraint at the quadrature nodes only;
+//! a torque can peak between two of them. After a solve the whole motion is evaluated on a dense grid
+//! ([`BetweenNodes::per_span`] evenly spaced times per knot span) and every row group — one joint's upper
+//! torque limit, one contact component, one edge of the support — that misses its bound by more than its
+//! tolerance **in physical units** ([`Tolerances`]) is listed with its worst time, value and limit
+//! ([`NodeViolation`]). Where the check fails the planner adds check nodes at the worst times of the
+//! offending knot spans and re-solves warm ([`super::enforce`]).
+
+use super::transcription::{Measured, RowKind};
+use super::{Spec, Transcription};
+use crate::error::{Error, Result};
+use crate::solve::{self, ConstraintKind, Problem};
+use serde::{Deserialize, Serialize};
+
+/// How far a constraint may be missed between the nodes, per kind, in physical units. Each default is
+/// below what a person or a measurement could tell apart, and above what a cubic spline between nodes
+/// that hold exactly can be asked to keep without many nodes.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Tolerances {
+    /// A revolute joint's position limit (°, default 0.1: a tenth of the resolution of a goniometer).
+    pub angle_deg: f64,
+    /// A prismatic joint's position limit (mm, default 0.1).
+    pub slide_mm: f64,
+    /// A torque limit, relative to the bound (%, default 0.5: well inside the spread of measured strength).
+    pub torque_percent: f64,
+    /// A torque limit, at least this (N·m or N, default 0.05: for small limits).
+    pub torque_floor: f64,
+    /// A loop closure (mm, default 1: a hand on a bar, a foot on the floor).
+    pub closure_mm: f64,
+    /// A contact force's sign or friction cone, or the feet's load (N, default 1: 0.1 kg-weight).
+    pub force_n: f64,
+    /// The centre of pressure beyond the support's edge (mm, default 2: a force plate's resolution).
+    pub centre_of_pressure_mm: f64,
+    /// Two solids closer than their margin (mm, default 1: a tenth of the usual 1–2 cm margin).
+    pub distance_mm: f64,
+}
+
+impl Default for Tolerances {
+    fn default() -> Self {
+        Tolerances {
+            angle_deg: 0.1,
+            slide_mm: 0.1,
+            torque_percent: 0.5,
+            torque_floor: 0.05,
+            closure_mm: 1.0,
+            force_n: 1.0,
+            centre_of_pressure_mm: 2.0,
+            distance_mm: 1.0,
+        }
+    }
+}
+
+impl Tolerances {
+    /// The tolerance of a measured row, in its unit.
+    pub fn of(&self, m: &Measured) -> f64 {
+        match m.kind {
+            RowKind::AngleLimit => self.angle_deg,
+            RowKind::SlideLimit => self.slide_mm,
+            RowKind::Torque => (self.torque_percent / 100.0 * m.limit.abs()).max(self.torque_floor),
+            RowKind::Closure => self.closure_mm,
+            RowKind::Force => self.force_n,
+            RowKind::CentreOfPressure => self.centre_of_pressure_mm,
+            RowKind::Distance => self.distance_mm,
+        }
+    }
+
+    /// Errs naming `field` when a tolerance is negative or not finite.
+    pub fn check(&self, origin: &str, field: &str) -> Result<()> {
+        let all = [
+            ("angle_deg", self.angle_deg),
+            ("slide_mm", self.slide_mm),
+            ("torque_percent", self.torque_percent),
+            ("torque_floor", self.torque_floor),
+            ("closure_mm", self.closure_mm),
+            ("force_n", self.force_n),
+            ("centre_of_pressure_mm", self.centre_of_pressure_mm),
+            ("distance_mm", self.distance_mm),
+        ];
+        for (name, v) in all {
+            if !(v.is_finite() && v >= 0.0) {
+                return Err(Error::task(origin, format!("{field}.{name}"), format!("must be a finite number ≥ 0, got {v}")));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The dense check between the nodes and its automatic refinement (`[constraints.between_nodes]`).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct BetweenNodes {
+    /// Refine where the check fails (default true). When false the check is still made and reported, and
+    /// a plan whose check fails is not converged.
+    pub refine: bool,
+    /// Rounds of refinement (default 8): each adds check nodes at the worst times and re-solves.
+    pub rounds: usize,
+    /// Evenly spaced check times per knot span (default 16).
+    pub per_span: usize,
+    /// The tolerances in physical units.
+    pub tolerances: Tolerances,
+}
+
+impl Default for BetweenNodes {
+    fn default() -> Self {
+        BetweenNodes { refine: true, rounds: 8, per_span: 16, tolerances: Tolerances::default() }
+    }
+}
+
+/// Errs naming the field (`constraints.between_nodes.…`) when a setting is out of range.
+pub fn check_settings(b: &BetweenNodes, origin: &str) -> Result<()> {
+    if b.per_span == 0 {
+        return Err(Error::task(origin, "constraints.between_nodes.per_span", "must be at least 1"));
+    }
+    b.tolerances.check(origin, "constraints.between_nodes.tolerances")
+}
+
+/// Extra nodes of a transcription, added by the refinement between the nodes: every inequality row is
+/// imposed at `limits` (weight 0 in the objective, whose quadrature stays the Gauss–Legendre rule), the
+/// loop closures at `closures` (s).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct CheckNodes {
+    /// Times of extra inequality nodes (s).
+    pub limits: Vec<f64>,
+    /// Times of extra loop-closure nodes (s).
+    pub closures: Vec<f64>,
+}
+
+/// A constraint missed between the nodes by more than its tolerance: its worst point.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct NodeViolation {
+    /// What is constrained: `torque limit (+) of joint "elbow"`.
+    pub constraint: String,
+    /// When it is missed most (s).
+    pub time_s: f64,
+    /// The value there (`unit`).
+    pub value: f64,
+    /// The bound (`unit`).
+    pub limit: f64,
+    /// By how much it is missed (`unit`).
+    pub excess: f64,
+    /// The tolerance it is held to (`unit`).
+    pub tolerance: f64,
+    /// "N·m", "N", "°" or "mm".
+    pub unit: String,
+    /// Which kind of row (internal: closures are refined at closure nodes).
+    #[serde(skip)]
+    pub(super) kind: RowKind,
+    /// `(knot span, worst time, excess)` of every offending span (internal: where to refine).
+    #[serde(skip)]
+    pub(super) spans: Vec<(usize, f64, f64)>,
+}
+
+impl std::fmt::Display for NodeViolation {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let (u, d) = (&self.unit, if self.unit == "mm" || self.unit == "°" { 2 } else { 3 });
+        write!(
+            f,
+            "{} at t = {:.3} s: {:.d$} {u} against the limit {:.d$} {u}, {:.d$} {u} over (tolerance {:.d$} {u})",
+            self.constraint, self.time_s, self.value, self.limit, self.excess, self.tolerance
+        )
+    }
+}
+
+/// Every row group of `spec` missed by more than its tolerance on `per_span` evenly spaced times per knot
+/// span (ends included), worst first; each with the worst point of every offending knot span. One dense
+/// evaluation, no Jacobians.
+pub fn check(spec: &Spec, x: &[f64], per_span: usize, tolerances: &Tolerances) -> Result<Vec<NodeViolation>> {
+    let spans = spec.n_ctrl - 3; // a clamped cubic has N − 3 knot spans
+    let count = spans * per_span.max(1);
+    let times: Vec<f64> = (0..=count).map(|k| spec.duration * k as f64 / count as f64).collect();
+    let mut grid = Transcription::on_grid(spec, &times)?;
+    let dims = grid.dims();
+    if dims.n_eq + dims.n_ineq == 0 {
+        return Ok(vec![]);
+    }
+    let fail = |e: String| Error::task(&spec.origin, "transcription", e);
+    let mut eval = solve::Evaluation::new(dims, &grid.jacobian_patterns()).map_err(|e| fail(e.to_string()))?;
+    grid.evaluate(x, false, &mut eval).map_err(fail)?;
+    let (n_eq, n_ineq) = (grid.n_eq_per_node(), grid.ineq_rows.len());
+    let span_of = |t: f64| ((t / spec.duration * spans as f64) as usize).min(spans - 1);
+    let mut found: Vec<NodeViolation> = Vec::new();
+    let rows = (0..dims.n_eq).map(|i| (ConstraintKind::Equality, i, eval.h[i], i % n_eq.max(1)));
+    // The node rows only: a task-space goal's rows are imposed at its own time, not between nodes.
+    let node_rows = times.len() * n_ineq;
+    let rows = rows.chain((0..node_rows).map(|i| (ConstraintKind::Inequality, i, eval.g[i], n_eq + i % n_ineq.max(1))));
+    let mut by_group: Vec<Option<usize>> = vec![None; n_eq + n_ineq];
+    for (kind, i, raw, group) in rows {
+        if kind == ConstraintKind::Inequality && raw <= 0.0 {
+            continue; // holds (and a NaN is measured, and fails)
+        }
+        let node = if kind == ConstraintKind::Equality { i / n_eq.max(1) } else { i / n_ineq.max(1) };
+        let m = grid.measure(kind, i, raw, &eval.g);
+        let tolerance = tolerances.of(&m);
+        // Missed: excess > tolerance (a NaN fails too).
+        if m.excess <= tolerance {
+            continue;
+        }
+        let (t, span) = (times[node], span_of(times[node]));
+        let v = match by_group[group] {
+            Some(v) => &mut found[v],
+            None => {
+                by_group[group] = Some(found.len());
+                found.push(NodeViolation {
+                    constraint: m.constraint.clone(),
+                    time_s: t,
+                    value: m.value,
+                    limit: m.limit,
+                    excess: f64::NEG_INFINITY,
+                    tolerance,
+                    unit: m.unit.to_string(),
+                    kind: m.kind,
+                    spans: vec![],
+                });
+                found.last_mut().expect("just pushed")
+            }
+        };
+        if m.excess > v.excess {
+            (v.time_s, v.value, v.excess) = (t, m.value, m.excess);
+        }
+        match v.spans.iter_mut().find(|s| s.0 == span) {
+            Some(s) if m.excess > s.2 => *s = (span, t, m.excess),
+            Some(_) => {}
+            None => v.spans.push((span, t, m.excess)),
+        }
+    }
+    found.sort_by(|a, b| (b.excess / b.tolerance.max(1e-300)).total_cmp(&(a.excess / a.tolerance.max(1e-300))));
+    Ok(found)
+}
+
+/// The check nodes to add for `violations`: the worst time of every offending knot span, split into
+/// closure and limit nodes, without times already in `nodes`.
+pub(super) fn more_nodes(violations: &[NodeViolation], nodes: &CheckNodes) -> CheckNodes {
+    let mut more = CheckNodes::default();
+    for v in violations {
+        let closure = v.kind == RowKind::Closure;
+        for &(_, t, _) in &v.spans {
+            let (have, list) = if closure { (&nodes.closures, &mut more.closures) } else { (&nodes.limits, &mut more.limits) };
+            if !have.iter().chain(list.iter()).any(|s| (s - t).abs() < 1e-12) {
+                list.push(t);
+            }
+        }
+    }
+    more
+}

@@ -1,0 +1,125 @@
+//! Refinement until the limits hold between the nodes ([`super::between`]): check the solved motion on the
+//! dense grid; where a row group misses its tolerance, add check nodes at the worst time of every
+//! offending knot span (inequality rows at weight 0 in the objective, or loop closures) and re-solve from
+//! the previous solution, warm-started with its multipliers (the new rows' start at 0), with at most the
+//! first solve's iterations — and where that does not converge, from the initial guess `guess`, cold (the
+//! bundled examples converge so where the warm re-solve crawls, docs/task-file.md). Repeat until the
+//! check holds, or the rounds ([`super::BetweenNodes::rounds`]), the iterations or the time of the whole
+//! solve are spent; then the plan is not converged, and the reason names every missed limit in its units.
+//! Where the check holds at once this costs one dense evaluation.
+
+use super::between::{self, CheckNodes, NodeViolation};
+use super::run::{remaining, run_start, Run};
+use super::{SolverKind, Spec, Transcription};
+use crate::error::Result;
+use crate::solve::{Multipliers, Outcome, Problem, Progress, Settings, StopReason};
+use std::time::Instant;
+
+/// The result of [`enforce`].
+pub(super) struct Enforced {
+    /// The last solve (its iterations and evaluations summed over the rounds).
+    pub run: Run,
+    /// The spec with the check nodes added.
+    pub spec: Spec,
+    /// What still misses its tolerance between the nodes (empty: the check holds).
+    pub violations: Vec<NodeViolation>,
+    /// Rounds of refinement made.
+    pub rounds: usize,
+}
+
+/// Checks `run` (solved from `guess`) between the nodes and refines as the module docs say, within
+/// `settings.max_iterations` (counted over the whole solve, `run`'s included) and `deadline`.
+pub(super) fn enforce(
+    spec: &Spec,
+    solver: SolverKind,
+    settings: &Settings,
+    deadline: Option<Instant>,
+    mut run: Run,
+    guess: &[f64],
+    observer: &mut dyn FnMut(&Progress),
+) -> Result<Enforced> {
+    let b = spec.between_nodes;
+    let mut spec = spec.clone();
+    let mut rounds = 0;
+    let first_iterations = run.outcome.iterations;
+    loop {
+        let violations = between::check(&spec, &run.outcome.x, b.per_span, &b.tolerances)?;
+        if violations.is_empty() {
+            return Ok(Enforced { run, spec, violations, rounds });
+        }
+        let more = between::more_nodes(&violations, &spec.check_nodes);
+        let left = settings.max_iterations.saturating_sub(run.outcome.iterations);
+        let why = if !run.outcome.converged {
+            None // the solve itself did not converge: its own reason stands
+        } else if !b.refine {
+            Some("refinement between the nodes is off".to_string())
+        } else if rounds >= b.rounds
+            || left == 0
+            || remaining(deadline).is_some_and(|t| t <= 0.0)
+            || more.limits.len() + more.closures.len() == 0
+        {
+            Some(format!(
+                "after {rounds} round(s) of refinement ({} check nodes added)",
+                spec.check_nodes.limits.len() + spec.check_nodes.closures.len()
+            ))
+        } else {
+            let warm = padded(&run.outcome.multipliers, &spec, &more)?;
+            spec.check_nodes.limits.extend(&more.limits);
+            spec.check_nodes.closures.extend(&more.closures);
+            // Warm first, with at most the first solve's iterations; where that does not converge (the
+            // augmented Lagrangian can crawl at the penalty it ended with), solve again from the guess,
+            // cold, with the check nodes — within what is left of the one budget.
+            let cap = left.min(first_iterations.max(100));
+            let warm = Settings { warm_start: Some(warm), max_iterations: cap, ..settings.clone() };
+            let mut next = run_start(&spec, solver, &warm, deadline, &run.outcome.x, observer)?;
+            let rest = left.saturating_sub(next.outcome.iterations);
+            if !next.outcome.converged && rest > 0 && remaining(deadline).is_none_or(|t| t > 0.0) {
+                let cold = Settings { max_iterations: rest, ..settings.clone() };
+                next = sum(next, run_start(&spec, solver, &cold, deadline, guess, observer)?);
+            }
+            run = sum(run, next);
+            rounds += 1;
+            continue;
+        };
+        if let Some(why) = why {
+            not_converged(&mut run.outcome, &violations, &why);
+        }
+        return Ok(Enforced { run, spec, violations, rounds });
+    }
+}
+
+/// `outcome` marked not converged: the limits missed between the nodes, in units.
+fn not_converged(outcome: &mut Outcome, violations: &[NodeViolation], why: &str) {
+    const SHOWN: usize = 3;
+    let mut listed: Vec<String> = violations.iter().take(SHOWN).map(|v| v.to_string()).collect();
+    if violations.len() > SHOWN {
+        listed.push(format!("and {} more", violations.len() - SHOWN));
+    }
+    outcome.converged = false;
+    outcome.reason = StopReason::BetweenNodes(format!("{} ({why})", listed.join("; ")));
+}
+
+/// The multipliers of `spec`'s transcription extended by zeros for the rows of the check nodes `more`.
+/// Check nodes come after the others ([`Transcription::new`]), so the old rows keep their indices.
+fn padded(multipliers: &Multipliers, spec: &Spec, more: &CheckNodes) -> Result<Multipliers> {
+    let mut grown = spec.clone();
+    grown.check_nodes.limits.extend(&more.limits);
+    grown.check_nodes.closures.extend(&more.closures);
+    let dims = Transcription::new(&grown)?.dims();
+    let mut m = multipliers.clone();
+    m.lambda.resize(dims.n_ineq, 0.0);
+    m.mu.resize(dims.n_eq, 0.0);
+    Ok(m)
+}
+
+/// Two solves in a row as one: the second's result, both's counts.
+fn sum(first: Run, second: Run) -> Run {
+    let (a, b) = (&first.outcome, second.outcome);
+    let outcome = Outcome {
+        iterations: a.iterations + b.iterations,
+        evaluations: a.evaluations + b.evaluations,
+        outer_iterations: a.outer_iterations + b.outer_iterations,
+        ..b
+    };
+    Run { outcome, polished: first.polished || second.polished, seconds: first.seconds + second.seconds }
+}
