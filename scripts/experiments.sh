@@ -10,7 +10,7 @@ cargo build --release --quiet
 names=("$@")
 [ ${#names[@]} -gt 0 ] || names=($(ls examples/*.toml | xargs -n1 basename | sed 's/\.toml$//'))
 mkdir -p docs/experiments out/experiments
-echo "| example | converged | effort ½∫τᵀWτ dt | iterations | solve (s) |"
+echo "| example | converged | objective | iterations | solve (s) |"
 echo "|---|---|---|---|---|"
 for name in "${names[@]}"; do
     dir="out/experiments/$name"

@@ -82,6 +82,9 @@ struct Solved {
 /// few enough that memory does not grow with the sweep.
 const NEIGHBOURS: usize = 256;
 
+/// Whether a warm start takes its neighbour's multipliers too.
+const WARM_MULTIPLIERS: bool = false;
+
 /// The iterations a warm start may take before the plan is made from the task's own guess instead.
 const WARM_ITERATIONS: usize = 400;
 
@@ -280,6 +283,6 @@ fn warm_from(task: &mut Task, plan: &Plan) {
     let m = &plan.outcome.multipliers;
     let fits = dims.is_some_and(|d| d.n_ineq == m.lambda.len() && d.n_eq == m.mu.len());
     task.spec.initial_guess = InitialGuess::Plan { ctrl: plan.ctrl.clone(), lambda_ctrl: plan.lambda_ctrl.clone() };
-    task.settings.warm_start = fits.then(|| m.clone());
+    task.settings.warm_start = (fits && WARM_MULTIPLIERS).then(|| m.clone());
     task.multistart = MultiStart::single();
 }
