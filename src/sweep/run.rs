@@ -1,7 +1,8 @@
 //! Running a sweep: the plans not yet in the table, in parallel on all cores (rayon; each thread walks a
 //! contiguous run of the grid, so its neighbours are the plans it just solved), each warm-started from the
-//! nearest plan solved so far — its control points, contact forces and multipliers, one start — and planned
-//! again from the task's own guess when that does not converge.
+//! nearest plan solved so far — its control points and contact forces, one start (not its multipliers: the
+//! augmented Lagrangian crawls from a neighbour's, docs/sweeps.md) — and planned again from the task's own
+//! guess when that does not converge.
 
 use super::row::{Row, Status};
 use super::{table, Sweep};
@@ -276,7 +277,8 @@ fn nearest(coords: &Coordinates, here: &[f64], solved: &Mutex<VecDeque<Solved>>,
         .map(|c| c.plan.clone())
 }
 
-/// Starts `task` from `plan`: its control points and forces, its multipliers when the rows match, one start.
+/// Starts `task` from `plan`: its control points and forces (its multipliers only with `WARM_MULTIPLIERS`,
+/// and when the rows match), one start.
 fn warm_from(task: &mut Task, plan: &Plan) {
     use crate::solve::Problem;
     let dims = crate::plan::Transcription::new(&task.spec).map(|p| p.dims()).ok();
