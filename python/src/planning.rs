@@ -105,15 +105,30 @@ pub fn plan(
         .transpose()?;
     let overrides = Overrides { solver, control_points, starts, refine: false };
     let mut task = load_task(py, task, &overrides)?;
-    // The solve holds no Python object: other Python threads run meanwhile.
-    let (planned, samples) = py
-        .detach(|| -> mintorque::Result<_> {
-            let planned = task.plan(&mut |_| {})?;
+    let cancel = mintorque::solve::Cancel::default();
+    task.settings.cancel = cancel.clone();
+    // The solve runs on its own thread, holding no Python object; this thread waits with the GIL released
+    // and looks for signals every 20 ms, so Ctrl-C stops the solve (at its next iteration) and raises
+    // KeyboardInterrupt.
+    let solve = std::thread::spawn(move || {
+        let planned = task.plan(&mut |_| {});
+        let samples = planned.as_ref().ok().map(|p| {
             let times = mintorque::report::sample_times(task.spec.duration, task.file.output.sample_rate);
-            let samples = mintorque::plan::sample(&task.spec, &planned, &times)?;
-            Ok((planned, samples))
-        })
-        .map_err(error)?;
+            mintorque::plan::sample(&task.spec, p, &times)
+        });
+        (task, planned, samples)
+    });
+    while !solve.is_finished() {
+        py.detach(|| std::thread::sleep(std::time::Duration::from_millis(20)));
+        if let Err(interrupt) = py.check_signals() {
+            cancel.raise();
+            let _ = py.detach(|| solve.join());
+            return Err(interrupt);
+        }
+    }
+    let (task, planned, samples) = solve.join().map_err(|_| error("the solve panicked"))?;
+    let planned = planned.map_err(error)?;
+    let samples = samples.expect("sampled when planned").map_err(error)?;
     result(py, &task, &planned, &samples)
 }
 

@@ -132,3 +132,23 @@ def test_sweep_returns_a_table_sorted_by_index(tmp_path):
     assert set(table["status"]) == {"converged"}
     # Least effort at the free-swing duration (0.6052 s ≈ the 0.6 s row).
     assert table.loc[table["effort"].idxmin(), "motion.duration"] == pytest.approx(0.6)
+
+
+def test_ctrl_c_interrupts_a_long_solve():
+    import signal
+
+    # A slow plan: the weight lift on a 4 cm support with 8 nodes per span (seconds, not milliseconds).
+    task = {
+        "model": {"human": "sagittal", "stature": 1.83, "mass": 81.0},
+        "motion": {"duration": 2.0, "start": {}, "goal": {"shoulder": 170.0}},
+        "environment": {"gravity": "earth", "payload": [{"frame": "barbell", "mass": 25.0, "inertia": [2.9, 0.02, 2.9]}]},
+        "constraints": {"balance": {"x": [0.01, 0.05], "y": [-0.15, 0.15]}},
+        "discretization": {"nodes_per_span": 8},
+        "solver": {"max_iterations": 10000000, "time_limit": 600.0},
+    }
+    timer = threading.Timer(0.3, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    start = time.perf_counter()
+    with pytest.raises(KeyboardInterrupt):
+        mintorque.plan(task)
+    assert time.perf_counter() - start < 3.0, "the solve went on after Ctrl-C"

@@ -135,6 +135,7 @@ pub(crate) struct AugmentedLagrangian<'a> {
     iterations: usize,
     outer: usize,
     deadline: Option<Instant>,
+    cancel: crate::solve::Cancel,
     max_iterations: usize,
     limit_hit: Option<Limit>,
     stall: StallWatch,
@@ -354,7 +355,7 @@ impl<'a> AugmentedLagrangian<'a> {
             penalty: self.penalty,
         };
         (self.observer)(&progress);
-        if self.deadline.is_some_and(|d| Instant::now() >= d) {
+        if self.deadline.is_some_and(|d| Instant::now() >= d) || self.cancel.raised() {
             self.limit_hit = Some(Limit::Time);
         } else if self.iterations >= self.max_iterations {
             self.limit_hit = Some(Limit::Iterations);
@@ -499,6 +500,7 @@ impl<'a> AugmentedLagrangian<'a> {
             iterations: 0,
             outer: 0,
             deadline: settings.time_limit.map(|t| started + Duration::from_secs_f64(t)),
+            cancel: settings.cancel.clone(),
             max_iterations: settings.max_iterations,
             limit_hit: None,
             stall: StallWatch { gradient_norm: f64::INFINITY, value: f64::INFINITY, since: 0 },
@@ -546,8 +548,8 @@ impl AugmentedLagrangian<'_> {
         let mut stuck = 0;
         let mut last: Option<Assessment> = None;
         loop {
-            if self.deadline.is_some_and(|d| Instant::now() >= d) {
-                return self.finish(x, StopReason::TimeLimit, last, settings);
+            if self.deadline.is_some_and(|d| Instant::now() >= d) || self.cancel.raised() {
+                return self.finish(x, self.time_reason(), last, settings);
             }
             if self.remaining_iterations() == 0 {
                 return self.finish(x, StopReason::MaxIterations, last, settings);
@@ -580,7 +582,7 @@ impl AugmentedLagrangian<'_> {
             match status {
                 InnerStatus::Stopped => {
                     let reason = match self.limit_hit {
-                        Some(Limit::Time) => StopReason::TimeLimit,
+                        Some(Limit::Time) => self.time_reason(),
                         _ => StopReason::MaxIterations,
                     };
                     return self.finish(x, reason, last, settings);
@@ -624,6 +626,15 @@ impl AugmentedLagrangian<'_> {
     /// The outcome at `x`: with the assessment made there if any, otherwise a fresh one with the current
     /// multipliers (NaN if `x` cannot be evaluated). If the test holds at `x`, the reason is `Converged`
     /// whatever stopped the iteration (say, a failed evaluation at a trial point beyond a solution).
+    /// Why the clock stopped the solve: the time limit, or the cancel flag.
+    fn time_reason(&self) -> StopReason {
+        if self.cancel.raised() {
+            StopReason::Interrupted
+        } else {
+            StopReason::TimeLimit
+        }
+    }
+
     fn finish(&mut self, x: Vec<f64>, reason: StopReason, assessment: Option<Assessment>, settings: &Settings) -> Outcome {
         let assessment = assessment.or_else(|| self.ensure_evaluated(&x).ok().map(|()| self.assess(false, settings)));
         let converged = assessment.is_some_and(|a| a.converged);

@@ -31,5 +31,5 @@ pub use least_squares::{AugLagLevenbergMarquardt, AugLagNewton};
 pub use linalg::{Cholesky, NotPositiveDefinite, SymmetricMatrix};
 pub use line_search::{EvalError, Iterate, LineSearch, Objective};
 pub use problem::{ConstraintKind, Dims, Evaluation, Patterns, Problem, ProblemError, RowFamily, Scales};
-pub use solver::{ConstraintRef, Multipliers, Outcome, Progress, Settings, Solver, StopReason};
+pub use solver::{Cancel, ConstraintRef, Multipliers, Outcome, Progress, Settings, Solver, StopReason};
 pub use sparse::{PatternError, SparseMatrix};

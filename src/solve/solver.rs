@@ -58,6 +58,33 @@ pub struct Settings {
     pub time_limit: Option<f64>,
     /// Multipliers to start from (e.g. from a previous solve of a similar problem); zero if `None`.
     pub warm_start: Option<Multipliers>,
+    /// Set from another thread to stop the solve at its next iteration ([`StopReason::Interrupted`]): Ctrl-C
+    /// in the Python binding. Not part of a task file.
+    #[serde(skip)]
+    pub cancel: Cancel,
+}
+
+/// A flag another thread raises to stop a solve; clones share it.
+#[derive(Clone, Debug, Default)]
+pub struct Cancel(std::sync::Arc<std::sync::atomic::AtomicBool>);
+
+impl Cancel {
+    /// Asks every solve holding this flag to stop.
+    pub fn raise(&self) {
+        self.0.store(true, std::sync::atomic::Ordering::Relaxed);
+    }
+
+    /// Whether the flag was raised.
+    pub fn raised(&self) -> bool {
+        self.0.load(std::sync::atomic::Ordering::Relaxed)
+    }
+}
+
+impl PartialEq for Cancel {
+    /// Settings compare equal whatever their flags: the flag is not a setting of the problem.
+    fn eq(&self, _: &Cancel) -> bool {
+        true
+    }
 }
 
 impl Default for Settings {
@@ -73,6 +100,7 @@ impl Default for Settings {
             max_penalty: 1e12,
             time_limit: Some(60.0),
             warm_start: None,
+            cancel: Cancel::default(),
         }
     }
 }
@@ -132,6 +160,8 @@ pub enum StopReason {
     },
     /// The wall-clock budget (`Settings::time_limit`) ran out.
     TimeLimit,
+    /// Stopped from another thread ([`Settings::cancel`]).
+    Interrupted,
     /// The problem failed to evaluate or produced NaN/∞ at an accepted point.
     EvaluationError(String),
     /// The problem's description or the arguments do not hang together (sizes, patterns, scales).
@@ -152,6 +182,7 @@ impl fmt::Display for StopReason {
                 write!(f, "infeasible: {worst} still violated by {violation:.3e} (scaled) at the largest penalty")
             }
             StopReason::TimeLimit => f.write_str("time limit reached"),
+            StopReason::Interrupted => f.write_str("interrupted"),
             StopReason::EvaluationError(m) => write!(f, "evaluation failed: {m}"),
             StopReason::InvalidInput(m) => write!(f, "invalid problem: {m}"),
             StopReason::BetweenNodes(m) => write!(f, "limits missed between the nodes: {m}"),
