@@ -110,23 +110,31 @@ pub fn plan(
     // The solve runs on its own thread, holding no Python object; this thread waits with the GIL released
     // and looks for signals every 20 ms, so Ctrl-C stops the solve (at its next iteration) and raises
     // KeyboardInterrupt.
+    let (done, mut finished) = std::sync::mpsc::channel();
     let solve = std::thread::spawn(move || {
         let planned = task.plan(&mut |_| {});
         let samples = planned.as_ref().ok().map(|p| {
             let times = mintorque::report::sample_times(task.spec.duration, task.file.output.sample_rate);
             mintorque::plan::sample(&task.spec, p, &times)
         });
-        (task, planned, samples)
+        let _ = done.send((task, planned, samples));
     });
-    while !solve.is_finished() {
-        py.detach(|| std::thread::sleep(std::time::Duration::from_millis(20)));
-        if let Err(interrupt) = py.check_signals() {
-            cancel.raise();
-            let _ = py.detach(|| solve.join());
-            return Err(interrupt);
+    let timeout = std::time::Duration::from_millis(20);
+    let (task, planned, samples) = loop {
+        let (received, receiver) = py.detach(move || (finished.recv_timeout(timeout), finished));
+        finished = receiver;
+        match received {
+            Ok(result) => break result,
+            Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {
+                if let Err(interrupt) = py.check_signals() {
+                    cancel.raise();
+                    let _ = py.detach(|| solve.join());
+                    return Err(interrupt);
+                }
+            }
+            Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => return Err(error("the solve panicked")),
         }
-    }
-    let (task, planned, samples) = solve.join().map_err(|_| error("the solve panicked"))?;
+    };
     let planned = planned.map_err(error)?;
     let samples = samples.expect("sampled when planned").map_err(error)?;
     result(py, &task, &planned, &samples)
