@@ -225,17 +225,7 @@ fn collision_second_order_term_matches_differences_of_the_gradient() {
             eval.jg.tr_mul_vec(&w_g, &mut g);
             g
         };
-        let h = 1e-5;
-        let mut fd = nalgebra::DMatrix::<f64>::zeros(dims.n, dims.n);
-        for col in 0..dims.n {
-            let (mut xp, mut xm) = (x.clone(), x.clone());
-            xp[col] += h;
-            xm[col] -= h;
-            let (gp, gm) = (weighted_gradient(&xp), weighted_gradient(&xm));
-            for row in 0..dims.n {
-                fd[(row, col)] = (gp[row] - gm[row]) / (2.0 * h);
-            }
-        }
+        let fd = common::central_differences(&x, 1e-5, &mut weighted_gradient);
         let mut target = SymmetricMatrix::dense(dims.n);
         assert!(problem.add_second_order(&x, [&w_r, &w_h, &w_g], &mut target));
         let term = target.to_dense();

@@ -37,17 +37,11 @@ fn solved(spec: &Spec, solver: SolverKind) -> Plan {
 }
 
 fn error_of(text: &str) -> String {
-    match Task::parse(text, &path()) {
-        Ok(_) => panic!("accepted a bad task:\n{text}"),
-        Err(e) => e.to_string(),
-    }
+    common::task_error(text)
 }
 
 fn assert_mentions(text: &str, parts: &[&str]) {
-    let e = error_of(text);
-    for p in parts.iter().chain(&["test-task.toml"]) {
-        assert!(e.contains(p), "error {e:?} does not mention {p:?}");
-    }
+    common::assert_task_error_mentions(text, parts)
 }
 
 /// `|τ(T) − τ_static(q_T)|∞` and `|q̈(T)|∞` of a plan: τ_static the inverse dynamics at rest, less the

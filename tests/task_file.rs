@@ -12,18 +12,11 @@ fn path() -> PathBuf {
 use common::TASK as GOOD;
 
 fn error_of(text: &str) -> String {
-    match Task::parse(text, &path()) {
-        Ok(_) => panic!("accepted a bad task:\n{text}"),
-        Err(e) => e.to_string(),
-    }
+    common::task_error(text)
 }
 
 fn assert_mentions(text: &str, parts: &[&str]) {
-    let e = error_of(text);
-    for p in parts {
-        assert!(e.contains(p), "error {e:?} does not mention {p:?}");
-    }
-    assert!(e.contains("test-task.toml"), "error {e:?} does not name the file");
+    common::assert_task_error_mentions(text, parts)
 }
 
 #[test]

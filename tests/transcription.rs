@@ -262,17 +262,7 @@ fn second_order_term_matches_differences_of_the_gradient() {
             eval.jg.tr_mul_vec_add(1.0, &weights[2], &mut g);
             g
         };
-        let h = 1e-5;
-        let mut fd = nalgebra::DMatrix::<f64>::zeros(dims.n, dims.n);
-        for col in 0..dims.n {
-            let (mut xp, mut xm) = (x.clone(), x.clone());
-            xp[col] += h;
-            xm[col] -= h;
-            let (gp, gm) = (weighted_gradient(&xp), weighted_gradient(&xm));
-            for row in 0..dims.n {
-                fd[(row, col)] = (gp[row] - gm[row]) / (2.0 * h);
-            }
-        }
+        let fd = common::central_differences(&x, 1e-5, &mut weighted_gradient);
         let mut target = SymmetricMatrix::dense(dims.n);
         let w = [&weights[0][..], &weights[1][..], &weights[2][..]];
         assert!(problem.add_second_order(&x, w, &mut target), "the transcription provides the term");

@@ -285,6 +285,9 @@ fn warm_from(task: &mut Task, plan: &Plan) {
     let m = &plan.outcome.multipliers;
     let fits = dims.is_some_and(|d| d.n_ineq == m.lambda.len() && d.n_eq == m.mu.len());
     task.spec.initial_guess = InitialGuess::Plan { ctrl: plan.ctrl.clone(), lambda_ctrl: plan.lambda_ctrl.clone() };
+    // The check nodes the neighbour's limits needed between the nodes: its neighbours likely need them too,
+    // so the warm solve imposes them from the start instead of finding them again.
+    task.spec.check_nodes = plan.check_nodes.clone();
     task.settings.warm_start = (fits && WARM_MULTIPLIERS).then(|| m.clone());
     task.multistart = MultiStart::single();
 }

@@ -30,6 +30,39 @@ pub fn reference_files() -> Vec<PathBuf> {
     files
 }
 
+/// The error of the task `text` read as `examples/test-task.toml` (panics when it is accepted).
+pub fn task_error(text: &str) -> String {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples/test-task.toml");
+    match mintorque::plan::task::Task::parse(text, &path) {
+        Ok(_) => panic!("accepted a bad task:\n{text}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+/// The error of the task `text` names the file and each of `parts`.
+pub fn assert_task_error_mentions(text: &str, parts: &[&str]) {
+    let e = task_error(text);
+    for p in parts.iter().chain(&["test-task.toml"]) {
+        assert!(e.contains(p), "error {e:?} does not mention {p:?}");
+    }
+}
+
+/// The Jacobian of `f` at `x` by central differences of step `h`: column `j` is `(f(x + h eⱼ) − f(x − h eⱼ)) / 2h`.
+pub fn central_differences(x: &[f64], h: f64, f: &mut dyn FnMut(&[f64]) -> Vec<f64>) -> nalgebra::DMatrix<f64> {
+    let rows = f(x).len();
+    let mut jac = nalgebra::DMatrix::<f64>::zeros(rows, x.len());
+    for col in 0..x.len() {
+        let (mut xp, mut xm) = (x.to_vec(), x.to_vec());
+        xp[col] += h;
+        xm[col] -= h;
+        let (fp, fm) = (f(&xp), f(&xm));
+        for row in 0..rows {
+            jac[(row, col)] = (fp[row] - fm[row]) / (2.0 * h);
+        }
+    }
+    jac
+}
+
 /// `|got − want| ≤ tol·max(1, |want|)`: relative for large values, absolute near zero.
 pub fn close(got: f64, want: f64, tol: f64) -> bool {
     (got - want).abs() <= tol * want.abs().max(1.0)

@@ -1,0 +1,158 @@
+//! The transcription as the solvers see it: [`crate::solve::Problem`] — dimensions, Jacobian patterns,
+//! evaluation, the second-order term, scales and row names.
+
+use super::*;
+
+impl Problem for Transcription<'_> {
+    fn dims(&self) -> Dims {
+        let nn = self.n_nodes();
+        Dims {
+            n: self.layout.n,
+            n_res: self.terms.n_res(),
+            n_eq: self.n_contact_eq(),
+            n_ineq: nn * self.n_ineq_node() + self.goals.n_rows(),
+        }
+    }
+
+    fn jacobian_patterns(&self) -> Patterns {
+        let nv = self.layout.nv;
+        let mut p = Patterns::default();
+        for basis in &self.nodes.basis {
+            let (motion, lambda) = self.node_columns(basis);
+            let both: Vec<usize> = motion.iter().chain(lambda.iter()).copied().collect();
+            for _ in 0..nv {
+                p.r.push(both.clone());
+            }
+            for row in &self.ineq_rows {
+                p.g.push(match *row {
+                    IneqRow::UpperPosition(i) | IneqRow::LowerPosition(i) => (basis.first..basis.first + 4)
+                        .filter(|&j| self.layout.owns(j))
+                        .filter_map(|j| self.layout.joint_var(j, i))
+                        .collect(),
+                    IneqRow::UpperTorque(_) | IneqRow::LowerTorque(_) | IneqRow::Balance(_) => both.clone(),
+                    IneqRow::Push(c) | IneqRow::Friction(c, _) => self.contact_columns(basis, c),
+                    IneqRow::Collision(_) => motion.clone(),
+                });
+            }
+        }
+        for basis in &self.contact_nodes.basis {
+            let (motion, _) = self.node_columns(basis);
+            for _ in 0..self.n_eq_node {
+                p.h.push(motion.clone());
+            }
+        }
+        p.g.extend(self.goal_patterns());
+        self.term_patterns(&mut p);
+        p
+    }
+
+    fn evaluate(&mut self, x: &[f64], want_jac: bool, out: &mut Evaluation) -> Result<(), String> {
+        self.set_x(x);
+        self.contact_rows(want_jac, out);
+        let nv = self.layout.nv;
+        let nl = self.layout.n_lambda;
+        for k in 0..self.n_nodes() {
+            self.eval_node(k, want_jac);
+            let basis = self.nodes.basis[k];
+            let sw = self.nodes.w[k].sqrt();
+            let w = &mut self.work;
+            // Objective residuals: √wₖ times the node's residual (√W τ, or L⁻¹τ).
+            for l in 0..nv {
+                out.r[k * nv + l] = sw * w.res[l];
+                if want_jac {
+                    Self::chain_rule(&self.layout, &basis, sw, w.residual_row(l, nv, nl), out.jr.row_values_mut(k * nv + l));
+                }
+            }
+            self.inequality_rows(k, want_jac, out);
+            self.term_rows(k, want_jac, out);
+        }
+        self.goal_rows(self.n_nodes() * self.n_ineq_node(), want_jac, out);
+        self.jerk_rows(want_jac, out);
+        Ok(())
+    }
+
+    fn add_second_order(&mut self, x: &[f64], weights: [&[f64]; 3], target: &mut SymmetricMatrix) -> bool {
+        if self.spec.objective != Objective::Torque {
+            return false;
+        }
+        self.add_second_order_term(x, weights, target);
+        true
+    }
+
+    fn scales(&self) -> Scales {
+        let nn = self.n_nodes();
+        let per_node: Vec<f64> = self
+            .ineq_rows
+            .iter()
+            .map(|row| match *row {
+                IneqRow::UpperPosition(i) | IneqRow::LowerPosition(i) => {
+                    let range = self.limits_up[i] - self.limits_low[i];
+                    if range.is_finite() && range > 0.0 {
+                        range
+                    } else {
+                        1.0
+                    }
+                }
+                IneqRow::UpperTorque(i) => self.torque_bound(i, true).max(1e-9),
+                IneqRow::LowerTorque(i) => self.torque_bound(i, false).max(1e-9),
+                IneqRow::Push(_) | IneqRow::Friction(..) => self.total_weight.max(1.0),
+                IneqRow::Balance(4) => self.total_weight.max(1.0),
+                IneqRow::Balance(_) => (0.1 * self.total_weight).max(1.0),
+                IneqRow::Collision(_) => 1.0, // metres, like the contacts
+            })
+            .collect();
+        // Goals in metres (like the contacts), their orientations as cosines.
+        let goals = std::iter::repeat_n(1.0, self.goals.n_rows());
+        Scales { eq: vec![1.0; self.n_contact_eq()], ineq: (0..nn).flat_map(|_| per_node.iter().copied()).chain(goals).collect() }
+    }
+
+    fn row_name(&self, family: RowFamily, index: usize) -> String {
+        match family {
+            RowFamily::Residual => {
+                let nv = self.layout.nv;
+                let (k, l) = (index / nv, index % nv);
+                let joint = &self.spec.model.joints[l + 1].name;
+                format!("the objective's torque residual of joint \"{joint}\" at t = {:.3} s (node {k})", self.nodes.t[k])
+            }
+            RowFamily::Equality => self.constraint_name(ConstraintKind::Equality, index),
+            RowFamily::Inequality => self.constraint_name(ConstraintKind::Inequality, index),
+        }
+    }
+
+    fn constraint_name(&self, kind: ConstraintKind, index: usize) -> String {
+        let joint = |i: usize| self.spec.model.joints[i + 1].name.clone();
+        match kind {
+            ConstraintKind::Inequality if index >= self.n_nodes() * self.n_ineq_node() => {
+                self.goal_row_name(index - self.n_nodes() * self.n_ineq_node())
+            }
+            ConstraintKind::Equality => {
+                let per = self.n_eq_node.max(1);
+                let (k, m) = (index / per, index % per);
+                let c = self.contacts.iter().rposition(|c| c.offset <= m).unwrap_or(0);
+                format!(
+                    "contact \"{}\" (component {}) at t = {:.3} s",
+                    self.spec.contacts[c].name,
+                    m - self.contacts[c].offset,
+                    self.contact_nodes.t[k]
+                )
+            }
+            ConstraintKind::Inequality => {
+                let (k, row) = self.decode_ineq(index);
+                let t = self.nodes.t[k];
+                let contact = |c: usize| self.spec.contacts[c].name.clone();
+                let what = match row {
+                    IneqRow::UpperPosition(i) => format!("upper position limit of joint \"{}\"", joint(i)),
+                    IneqRow::LowerPosition(i) => format!("lower position limit of joint \"{}\"", joint(i)),
+                    IneqRow::UpperTorque(i) => format!("torque limit (+) of joint \"{}\"", joint(i)),
+                    IneqRow::LowerTorque(i) => format!("torque limit (−) of joint \"{}\"", joint(i)),
+                    IneqRow::Push(c) => format!("push-only contact force of \"{}\"", contact(c)),
+                    IneqRow::Friction(c, _) => format!("friction cone of \"{}\"", contact(c)),
+                    IneqRow::Balance(4) => "balance: feet stay loaded".to_string(),
+                    IneqRow::Balance(_) => "balance: centre of pressure inside the support".to_string(),
+                    IneqRow::Collision(p) => format!("distance between {}", self.collisions.describe(self.spec, p)),
+                };
+                format!("{what} at t = {t:.3} s")
+            }
+        }
+    }
+}
