@@ -244,6 +244,11 @@ fn plan_one(
             _ => start = "cold-retry",
         }
     }
+    if start == "cold-retry" {
+        // A retry after a failed warm start: one start from the task's own guess, as the warm starts have
+        // one (the task's other starts would double the cost of a fifth of the plans).
+        task.multistart = MultiStart::single();
+    }
     let (task, plan, start) = match planned {
         Some(done) => done,
         None => match task.plan(&mut |_| {}) {
