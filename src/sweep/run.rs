@@ -83,9 +83,6 @@ struct Solved {
 /// few enough that memory does not grow with the sweep.
 const NEIGHBOURS: usize = 256;
 
-/// Whether a warm start takes its neighbour's multipliers too.
-const WARM_MULTIPLIERS: bool = false;
-
 /// The iterations a warm start may take before the plan is made from the task's own guess instead.
 const WARM_ITERATIONS: usize = 400;
 
@@ -228,31 +225,26 @@ fn plan_one(
         Err(e) => return Ok(Row::failed(i, values, e.to_string(), joints.len())),
     };
     let here = coords.of(sweep, i);
-    let neighbour = if options.warm_starts { nearest(coords, &here, solved, &task) } else { None };
+    let neighbour = if options.warm_starts { nearest(coords, &here, solved, &task.spec) } else { None };
     let mut start = "cold";
-    let mut planned = None;
+    let mut warmed = None;
     if let Some(plan) = neighbour {
-        let mut warm = sweep.task(i)?;
-        warm_from(&mut warm, &plan);
-        // A warm start either lands near its neighbour's optimum quickly or is in the wrong basin: give
-        // it a bounded share of the budget before planning from the task's own guess.
-        warm.settings.max_iterations = warm.settings.max_iterations.min(WARM_ITERATIONS);
-        match warm.plan(&mut |_| {}) {
-            Ok(p) if p.converged() => {
-                planned = Some((warm, p, "warm"));
+        warm_from(&mut task, &plan);
+        match task.plan(&mut |_| {}) {
+            Ok(p) if p.converged() => warmed = Some(p),
+            _ => {
+                // A retry after a failed warm start: the task afresh, one start from its own guess, as the
+                // warm starts have one (the task's other starts would double the cost of a fifth of the plans).
+                start = "cold-retry";
+                task = sweep.task(i)?;
+                task.multistart = MultiStart::single();
             }
-            _ => start = "cold-retry",
         }
     }
-    if start == "cold-retry" {
-        // A retry after a failed warm start: one start from the task's own guess, as the warm starts have
-        // one (the task's other starts would double the cost of a fifth of the plans).
-        task.multistart = MultiStart::single();
-    }
-    let (task, plan, start) = match planned {
-        Some(done) => done,
+    let (plan, start) = match warmed {
+        Some(p) => (p, "warm"),
         None => match task.plan(&mut |_| {}) {
-            Ok(p) => (task, p, start),
+            Ok(p) => (p, start),
             Err(e) => return Ok(Row::failed(i, values, e.to_string(), joints.len())),
         },
     };
@@ -271,28 +263,26 @@ fn plan_one(
     Ok(row)
 }
 
-/// The nearest solved plan whose unknowns fit `task` (same joints, N and contacts).
-fn nearest(coords: &Coordinates, here: &[f64], solved: &Mutex<VecDeque<Solved>>, task: &Task) -> Option<Plan> {
-    let problem = crate::plan::Transcription::new(&task.spec).ok()?;
-    let (n_joint, n_lambda) = (problem.layout.n_ctrl * problem.layout.nv, problem.layout.n_ctrl * problem.layout.n_lambda);
+/// The nearest solved plan whose unknowns fit `spec` (same joints, N and contact-force components).
+fn nearest(coords: &Coordinates, here: &[f64], solved: &Mutex<VecDeque<Solved>>, spec: &crate::plan::Spec) -> Option<Plan> {
+    let n_lambda: usize = spec.contacts.iter().map(|c| c.directions().len()).sum();
+    let (n_joint, n_force) = (spec.n_ctrl * spec.model.nv(), spec.n_ctrl * n_lambda);
     let s = solved.lock().expect("no thread panics holding the neighbours");
     s.iter()
-        .filter(|c| c.plan.ctrl.len() == n_joint && c.plan.lambda_ctrl.len() == n_lambda)
+        .filter(|c| c.plan.ctrl.len() == n_joint && c.plan.lambda_ctrl.len() == n_force)
         .min_by(|a, b| distance(coords, &a.coords, here).total_cmp(&distance(coords, &b.coords, here)))
         .map(|c| c.plan.clone())
 }
 
-/// Starts `task` from `plan`: its control points and forces (its multipliers only with `WARM_MULTIPLIERS`,
-/// and when the rows match), one start.
+/// Starts `task` from `plan`: its control points, forces and check nodes, one start, a bounded budget. Not
+/// its multipliers: the augmented Lagrangian crawls from a neighbour's (docs/sweeps.md).
 fn warm_from(task: &mut Task, plan: &Plan) {
-    use crate::solve::Problem;
-    let dims = crate::plan::Transcription::new(&task.spec).map(|p| p.dims()).ok();
-    let m = &plan.outcome.multipliers;
-    let fits = dims.is_some_and(|d| d.n_ineq == m.lambda.len() && d.n_eq == m.mu.len());
     task.spec.initial_guess = InitialGuess::Plan { ctrl: plan.ctrl.clone(), lambda_ctrl: plan.lambda_ctrl.clone() };
     // The check nodes the neighbour's limits needed between the nodes: its neighbours likely need them too,
     // so the warm solve imposes them from the start instead of finding them again.
     task.spec.check_nodes = plan.check_nodes.clone();
-    task.settings.warm_start = (fits && WARM_MULTIPLIERS).then(|| m.clone());
     task.multistart = MultiStart::single();
+    // A warm start either lands near its neighbour's optimum quickly or is in the wrong basin: a bounded
+    // share of the budget before the task is planned from its own guess.
+    task.settings.max_iterations = task.settings.max_iterations.min(WARM_ITERATIONS);
 }
