@@ -57,17 +57,17 @@ impl Sweep {
             .map_err(|e| Error::task(&origin, "base", format!("cannot read the task file {base_origin}: {e}")))?;
         let base: toml::Table = toml::from_str(&base_text).map_err(|e| Error::task(&base_origin, "file", e.to_string()))?;
         let first = Task::parse(&base_text, &base_path)?;
-        let combinations = schema::combinations(&file, &origin)?;
+        let lists = schema::values(&file, &origin)?;
+        let combinations = schema::combinations(&file.mode, &lists, &origin)?;
         let joint_names = first.spec.model.joint_names().iter().map(|s| s.to_string()).collect();
         let sweep = Sweep { path: path.to_path_buf(), file, base_path, base_text, base, combinations, joint_names };
-        sweep.check_values(&origin)?;
+        sweep.check_values(&lists, &origin)?;
         Ok(sweep)
     }
 
     /// Every parameter value alone on the base task must make a valid task.
-    fn check_values(&self, origin: &str) -> Result<()> {
-        for (i, p) in self.file.parameter.iter().enumerate() {
-            let values = p.expand(origin, &format!("parameter[{i}]"))?;
+    fn check_values(&self, lists: &[Vec<toml::Value>], origin: &str) -> Result<()> {
+        for (i, (p, values)) in self.file.parameter.iter().zip(lists).enumerate() {
             for v in values {
                 self.task_with(&[(p.path.as_str(), v.clone())])
                     .map_err(|e| Error::task(origin, format!("parameter[{i}]"), format!("\"{}\" = {v}: {e}", p.path)))?;

@@ -155,14 +155,18 @@ impl Random {
     }
 }
 
-/// The plans of a sweep: for each, one value per parameter (in the file's order).
-pub fn combinations(file: &SweepFile, origin: &str) -> Result<Vec<Vec<toml::Value>>> {
+/// Every parameter's values, in the file's order.
+pub fn values(file: &SweepFile, origin: &str) -> Result<Vec<Vec<toml::Value>>> {
     if file.parameter.is_empty() {
         return Err(Error::task(origin, "parameter", "no parameters: a sweep of zero plans"));
     }
-    let lists: Vec<Vec<toml::Value>> =
-        file.parameter.iter().enumerate().map(|(i, p)| p.expand(origin, &format!("parameter[{i}]"))).collect::<Result<_>>()?;
-    match file.mode.as_str() {
+    file.parameter.iter().enumerate().map(|(i, p)| p.expand(origin, &format!("parameter[{i}]"))).collect()
+}
+
+/// The plans of a sweep of parameter values `lists` (from [`values`]) in `mode`: for each, one value per
+/// parameter.
+pub fn combinations(mode: &str, lists: &[Vec<toml::Value>], origin: &str) -> Result<Vec<Vec<toml::Value>>> {
+    match mode {
         "grid" => {
             let total = lists.iter().try_fold(1usize, |acc, l| acc.checked_mul(l.len()).filter(|n| *n <= MAX_PLANS));
             if total.is_none() {
