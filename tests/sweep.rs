@@ -174,3 +174,15 @@ print("ok")
     let out = Command::new("python3").arg("-c").arg(script).arg(&report.parquet).arg(&report.csv).output().unwrap();
     assert!(out.status.success(), "pyarrow: {}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
 }
+
+#[test]
+fn a_share_plans_and_counts_only_its_own_plans() {
+    let dir = scratch("share");
+    let s = load(&pendulum_sweep(&dir, ""));
+    let options = sweep::Options { share: Some(3..8), ..Default::default() };
+    let report = sweep::run(&s, &dir.join("out"), &options, &|_| {}).unwrap();
+    assert_eq!((report.total, report.resumed, report.converged), (5, 0, 5));
+    let indices: Vec<usize> =
+        rows_by_index(&std::fs::read_to_string(&report.csv).unwrap()).iter().map(|r| r[0].parse().unwrap()).collect();
+    assert_eq!(indices, vec![3, 4, 5, 6, 7]);
+}

@@ -40,7 +40,7 @@ impl Default for Options {
 pub struct Progress {
     /// Plans in the table (this run's and an earlier run's).
     pub done: usize,
-    /// Plans in the sweep.
+    /// Plans in the sweep (in its share, with [`Options::share`]).
     pub total: usize,
     /// Of those done, how many converged.
     pub converged: usize,
@@ -53,7 +53,7 @@ pub struct Progress {
 /// How a sweep went.
 #[derive(Clone, Debug)]
 pub struct Report {
-    /// Plans in the sweep.
+    /// Plans in the sweep (in its share, with [`Options::share`]).
     pub total: usize,
     /// Plans found in the table from an earlier run (skipped).
     pub resumed: usize,
@@ -99,11 +99,11 @@ pub fn run(sweep: &Sweep, out: &Path, options: &Options, observer: &(dyn Fn(&Pro
     for r in earlier.iter().filter(|r| r.index < sweep.len()) {
         done[r.index] = true;
     }
-    let share = options.share.clone().unwrap_or(0..sweep.len());
+    let share = options.share.clone().map_or(0..sweep.len(), |r| r.start.min(sweep.len())..r.end.min(sweep.len()));
     let todo: Vec<usize> = (0..sweep.len()).filter(|i| !done[*i] && share.contains(i)).collect();
     let writer = Mutex::new(table::Writer::open(&csv, &header)?);
     let solved = Mutex::new(VecDeque::<Solved>::new());
-    let resumed = sweep.len() - todo.len();
+    let (total, resumed) = (share.len(), share.clone().filter(|i| done[*i]).count());
     let (count, converged) =
         (AtomicUsize::new(0), AtomicUsize::new(earlier.iter().filter(|r| r.status == Status::Converged).count()));
     let coords = Coordinates::new(sweep);
@@ -114,7 +114,7 @@ pub fn run(sweep: &Sweep, out: &Path, options: &Options, observer: &(dyn Fn(&Pro
             + usize::from(row.status == Status::Converged);
         let n = count.fetch_add(1, Ordering::Relaxed) + 1;
         let seconds = started.elapsed().as_secs_f64();
-        observer(&Progress { done: resumed + n, total: sweep.len(), converged: c, done_this_run: n, seconds });
+        observer(&Progress { done: resumed + n, total, converged: c, done_this_run: n, seconds });
         Ok(())
     })?;
     drop(writer);
@@ -124,7 +124,7 @@ pub fn run(sweep: &Sweep, out: &Path, options: &Options, observer: &(dyn Fn(&Pro
     let plots = super::plots::write(sweep, &rows, out)?;
     let by = |s: Status| rows.iter().filter(|r| r.status == s).count();
     Ok(Report {
-        total: sweep.len(),
+        total,
         resumed,
         converged: by(Status::Converged),
         not_converged: by(Status::NotConverged),
