@@ -24,6 +24,13 @@ struct Batch {
     single: bool,
 }
 
+impl Batch {
+    /// State `k` of input `i`: a row of a standard-layout `n × nv` array, contiguous.
+    fn state(&self, i: usize, k: usize) -> &[f64] {
+        self.rows[i].row(k).to_slice().expect("owned arrays are in standard layout")
+    }
+}
+
 fn batch(arrays: &[(&str, &PyReadonlyArrayDyn<'_, f64>)], nv: usize) -> PyResult<Batch> {
     let first = arrays[0].1;
     let single = first.ndim() == 1;
@@ -86,8 +93,7 @@ impl Model {
         let b = batch(&inputs, nv)?;
         let mut out = Array2::zeros((b.n, nv));
         for k in 0..b.n {
-            let [x, y, z] = [0, 1, 2].map(|i| b.rows[i].row(k).to_vec());
-            let r = f(&self.model, &mut self.data, [&x, &y, &z]);
+            let r = f(&self.model, &mut self.data, [b.state(0, k), b.state(1, k), b.state(2, k)]);
             out.row_mut(k).iter_mut().zip(r.iter()).for_each(|(o, v)| *o = *v);
         }
         Ok(shaped(py, out, b.single))
@@ -164,8 +170,7 @@ impl Model {
         let b = batch(&[("q", &q), ("v", &v), ("a", &a)], nv)?;
         let mut out = [Array3::zeros((b.n, nv, nv)), Array3::zeros((b.n, nv, nv)), Array3::zeros((b.n, nv, nv))];
         for k in 0..b.n {
-            let [q, v, a] = [0, 1, 2].map(|i| b.rows[i].row(k).to_vec());
-            rnea_derivatives(&self.model, &mut self.data, &q, &v, &a, &g, None);
+            rnea_derivatives(&self.model, &mut self.data, b.state(0, k), b.state(1, k), b.state(2, k), &g, None);
             for (o, m) in out.iter_mut().zip([&self.data.dtau_dq, &self.data.dtau_dv, &self.data.M]) {
                 for r in 0..nv {
                     for c in 0..nv {
@@ -184,7 +189,7 @@ impl Model {
         let b = batch(&[("q", &q)], nv)?;
         let mut out = Array3::zeros((b.n, nv, nv));
         for k in 0..b.n {
-            let h = crba(&self.model, &mut self.data, &b.rows[0].row(k).to_vec());
+            let h = crba(&self.model, &mut self.data, b.state(0, k));
             for r in 0..nv {
                 for c in 0..nv {
                     out[(k, r, c)] = h[(r, c)];
