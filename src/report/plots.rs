@@ -243,16 +243,25 @@ fn joint_panel<DB: DrawingBackend>(
             .legend(|(x, y)| DashedPathElement::new(vec![(x, y), (x + 22, y)], 5, 3, GUESS.stroke_width(2)));
     }
     if i == 0 {
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK.mix(0.4))
-            .label_font(("sans-serif", 12))
-            .draw()
-            .map_err(drawing_error)?;
+        draw_legend(&mut chart, SeriesLabelPosition::UpperRight, 12)?;
     }
     Ok(())
+}
+
+/// The chart's legend at `position`, in the plots' one style (a pale box, a thin border, `size` px text).
+pub(crate) fn draw_legend<'a, DB: DrawingBackend + 'a, CT: plotters::coord::CoordTranslate>(
+    chart: &mut ChartContext<'a, DB, CT>,
+    position: SeriesLabelPosition,
+    size: u32,
+) -> Result<()> {
+    chart
+        .configure_series_labels()
+        .position(position)
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK.mix(0.4))
+        .label_font(("sans-serif", size))
+        .draw()
+        .map_err(drawing_error)
 }
 
 /// The y range of a panel with the guess: the plan's range, widened to hold the guess when that takes at
@@ -336,14 +345,7 @@ fn contact_plot(record: &PlanRecord) -> Result<String> {
                     .label(format!("f{name}"))
                     .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], colour.stroke_width(2)));
             }
-            chart
-                .configure_series_labels()
-                .position(SeriesLabelPosition::UpperRight)
-                .background_style(WHITE.mix(0.85))
-                .border_style(BLACK.mix(0.4))
-                .label_font(("sans-serif", 12))
-                .draw()
-                .map_err(drawing_error)?;
+            draw_legend(&mut chart, SeriesLabelPosition::UpperRight, 12)?;
         }
         root.present().map_err(drawing_error)?;
     }

@@ -4,7 +4,7 @@
 use super::row::{Row, Status};
 use super::Sweep;
 use crate::plan_dir::Result;
-use crate::report::plots::{drawing_error, padded_range};
+use crate::report::plots::{draw_legend, drawing_error, padded_range};
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
 
@@ -83,13 +83,5 @@ fn panel<DB: DrawingBackend>(
         let c = *colour;
         drawn.label(*name).legend(move |(x, y)| Circle::new((x + 8, y), 3, c.filled()));
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperLeft)
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK.mix(0.4))
-        .label_font(("sans-serif", 11))
-        .draw()
-        .map_err(drawing_error)?;
-    Ok(())
+    Ok(draw_legend(&mut chart, SeriesLabelPosition::UpperLeft, 11)?)
 }
