@@ -1,8 +1,8 @@
 //! Running a sweep: the plans not yet in the table, in parallel on all cores (rayon; each thread walks a
 //! contiguous run of the grid, so its neighbours are the plans it just solved), each warm-started from the
-//! nearest plan solved so far — its control points and contact forces, one start (not its multipliers: the
-//! augmented Lagrangian crawls from a neighbour's, docs/sweeps.md) — and planned again from the task's own
-//! guess when that does not converge.
+//! nearest plan solved so far — its control points, contact forces, check nodes, multipliers and penalty,
+//! one start; then, where that does not converge, from its motion alone (fresh multipliers) — and planned
+//! again from the task's own guess when neither converges (docs/sweeps.md).
 
 use super::row::{Row, Status};
 use super::{table, Sweep};
@@ -229,16 +229,21 @@ fn plan_one(
     let mut start = "cold";
     let mut warmed = None;
     if let Some(plan) = neighbour {
-        warm_from(&mut task, &plan);
-        match task.plan(&mut |_| {}) {
-            Ok(p) if p.converged() => warmed = Some(p),
-            _ => {
-                // A retry after a failed warm start: the task afresh, one start from its own guess, as the
-                // warm starts have one (the task's other starts would double the cost of a fifth of the plans).
-                start = "cold-retry";
-                task = sweep.task(i)?;
-                task.multistart = MultiStart::single();
+        for mode in [Warm::Resume, Warm::Motion] {
+            warm_from(&mut task, &plan, mode);
+            if let Ok(p) = task.plan(&mut |_| {}) {
+                if p.converged() {
+                    warmed = Some(p);
+                    break;
+                }
             }
+            task = sweep.task(i)?;
+        }
+        if warmed.is_none() {
+            // A retry after failed warm starts: the task afresh, one start from its own guess, as the
+            // warm starts have one (the task's other starts would double the cost of a fifth of the plans).
+            start = "cold-retry";
+            task.multistart = MultiStart::single();
         }
     }
     let (plan, start) = match warmed {
@@ -274,14 +279,29 @@ fn nearest(coords: &Coordinates, here: &[f64], solved: &Mutex<VecDeque<Solved>>,
         .map(|c| c.plan.clone())
 }
 
-/// Starts `task` from `plan`: its control points, forces and check nodes, one start, a bounded budget. Not
-/// its multipliers: the augmented Lagrangian crawls from a neighbour's (docs/sweeps.md).
-fn warm_from(task: &mut Task, plan: &Plan) {
+/// What a warm start takes from its neighbour besides the motion.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Warm {
+    /// Its multipliers and penalty too: the augmented Lagrangian resumes where the neighbour ended.
+    Resume,
+    /// The motion only (fresh multipliers and penalty): slower, but it gets out of a neighbour's basin
+    /// where resuming does not converge.
+    Motion,
+}
+
+/// Starts `task` from `plan`: its control points, forces and check nodes (and with [`Warm::Resume`] its
+/// multipliers and penalty), one start, a bounded budget.
+fn warm_from(task: &mut Task, plan: &Plan, mode: Warm) {
     task.spec.initial_guess = InitialGuess::Plan { ctrl: plan.ctrl.clone(), lambda_ctrl: plan.lambda_ctrl.clone() };
     // The check nodes the neighbour's limits needed between the nodes: its neighbours likely need them too,
     // so the warm solve imposes them from the start instead of finding them again.
     task.spec.check_nodes = plan.check_nodes.clone();
     task.multistart = MultiStart::single();
+    let penalty = plan.outcome.penalty;
+    if mode == Warm::Resume && penalty.is_finite() && penalty > 0.0 {
+        task.settings.warm_start = Some(plan.outcome.multipliers.clone());
+        task.settings.initial_penalty = Some(penalty);
+    }
     // A warm start either lands near its neighbour's optimum quickly or is in the wrong basin: a bounded
     // share of the budget before the task is planned from its own guess.
     task.settings.max_iterations = task.settings.max_iterations.min(WARM_ITERATIONS);
