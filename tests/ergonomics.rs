@@ -62,7 +62,7 @@ fn joint_loads_balance_each_subtrees_momentum() {
         let vt = (0..nv).map(|i| v[i] + a[i] * t).collect();
         (qt, vt)
     };
-    for i in 0..nv {
+    for (i, load) in loads.iter().enumerate() {
         let b = i + 1;
         let (qp, vp) = state(dt);
         let (qm, vm) = state(-dt);
@@ -70,7 +70,7 @@ fn joint_loads_balance_each_subtrees_momentum() {
             (subtree_momentum(&model, &mut data, &qp, &vp, b) - subtree_momentum(&model, &mut data, &qm, &vm, b)) * (0.5 / dt);
         // Weights [c × m g; m g] and the push, if its body is in the subtree.
         kinematics::placements(&model, &mut data, &q);
-        let mut applied = placements[b].act_force(&Force::new(loads[i].moment, loads[i].force));
+        let mut applied = placements[b].act_force(&Force::new(load.moment, load.force));
         for j in b..model.bodies.len() {
             let mut k = j;
             while k > b {
@@ -177,11 +177,11 @@ fn lift(name: &str) -> &'static Lift {
 fn the_joint_loads_of_a_plan_carry_its_torques_and_the_weight_above_the_ankles() {
     let l = lift("lift_squat");
     for (s, loads) in l.record.samples.iter().zip(&l.series) {
-        for i in 0..l.model.nv() {
+        for (i, load) in loads.iter().enumerate() {
             // The moment along the joint axis is the joint torque: active plus passive.
             let j = &l.model.joints[i + 1];
             let total = s.tau[i] + j.passive.torque(s.q[i], s.qd[i]);
-            assert!((loads[i].moment.dot(&j.axis) - total).abs() < 1e-6 * (1.0 + total.abs()), "{} at {}", j.name, s.t);
+            assert!((load.moment.dot(&j.axis) - total).abs() < 1e-6 * (1.0 + total.abs()), "{} at {}", j.name, s.t);
         }
     }
     // Held at the start: the ankles carry the weight of everything above the feet, and the box.
@@ -239,7 +239,8 @@ fn edited(name: &str, edit: impl Fn(String) -> String) -> std::path::PathBuf {
 #[test]
 fn bad_ergonomic_input_is_refused_naming_the_file_and_field() {
     let out = std::env::temp_dir().join(format!("mintorque-ergonomics-out-{}", std::process::id()));
-    let cases: [(&str, Box<dyn Fn(String) -> String>, &[&str]); 5] = [
+    type Edit = Box<dyn Fn(String) -> String>;
+    let cases: [(&str, Edit, &[&str]); 5] = [
         ("no_frequency.toml", Box::new(|t: String| t.replace("frequency_per_min = 1.0", "")), &["frequency_per_min"]),
         (
             "no_payload.toml",
