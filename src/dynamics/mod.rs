@@ -13,6 +13,7 @@ pub mod batch;
 pub mod bench;
 pub mod crba;
 pub mod data;
+pub mod joint_loads;
 pub mod kinematics;
 pub mod point_force;
 pub mod rnea;

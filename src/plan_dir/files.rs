@@ -21,6 +21,8 @@ pub struct PlanContents {
     pub summary: Option<Summary>,
     /// `ergonomics.json`, and the `ergonomics` of `summary.json`.
     pub ergonomics: Option<Ergonomics>,
+    /// The load of every joint at every sample: `joint_loads.csv` and its plots.
+    pub joint_loads: Option<ergonomics::loads::LoadSeries>,
     /// `task.resolved.toml`.
     pub resolved_task: Option<String>,
     /// Plot the motion (with the initial guess dashed, when given).
@@ -39,6 +41,7 @@ impl PlanContents {
             record,
             summary: None,
             ergonomics: None,
+            joint_loads: None,
             resolved_task: None,
             plots: false,
             guess: None,
@@ -56,7 +59,11 @@ impl PlanContents {
         let record = PlanRecord::new(spec, planned, &samples);
         super::finite::check_record(&record, "the planned motion")?;
         let summary = Summary::new(spec, planned, &samples);
-        let ergonomics = ergonomics::ergonomics(&spec.model, &record, &output.strength)?;
+        let origin = task.path.display().to_string();
+        let setup = ergonomics::Setup::resolve(&task.file, spec, &origin)?;
+        let joint_loads = ergonomics::loads::series(&spec.model, &record, &spec.loads)?;
+        let mut ergonomics = ergonomics::ergonomics(&spec.model, &record, &output.strength)?;
+        ergonomics.add_measures(&spec.model, &record, &setup, &joint_loads, &origin)?;
         let resolved = toml::to_string_pretty(&task.resolved_file())
             .map_err(|e| crate::Error::task(task.path.display().to_string(), "serialising the resolved task", e.to_string()))?;
         let plots = output.plots && !no_plots;
@@ -73,6 +80,7 @@ impl PlanContents {
             record,
             summary: Some(summary),
             ergonomics: Some(ergonomics),
+            joint_loads: Some(joint_loads),
             resolved_task: Some(resolved),
             plots,
             guess,
@@ -100,6 +108,9 @@ impl PlanContents {
         put("plan.json", pretty(record)?);
         put("model.figure.toml", figure::to_toml(model).into_bytes());
         put("trajectory.csv", report::export::csv::csv(model, record).into_bytes());
+        if let Some(series) = &self.joint_loads {
+            put("joint_loads.csv", ergonomics::loads::csv(model, record, series).into_bytes());
+        }
         let summary_text = self.summary_json()?.as_ref().map(pretty_text).transpose()?;
         if let Some(text) = &summary_text {
             put("summary.json", text.clone().into_bytes());
@@ -114,6 +125,9 @@ impl PlanContents {
         }
         if self.plots {
             files.extend(report::plots::plots(model, record, self.guess.as_deref())?);
+            if let Some(e) = &self.ergonomics {
+                files.extend(ergonomics::plots::plots(model, record, self.joint_loads.as_ref(), e)?);
+            }
         }
         Ok(files)
     }

@@ -5,9 +5,16 @@
 //! Between samples every quantity is taken as linear in time (τ for the limit crossings, the power τ·q̇
 //! for the work), so the answers are exact for piecewise-linear data and converge quadratically otherwise.
 
+pub mod loads;
+pub mod lumbar;
+pub mod niosh;
+pub mod plots;
+pub mod strength;
+
 use super::record::{PlanRecord, SampleRecord};
 use crate::error::{Error, Result};
 use crate::model::{JointKind, Model};
+use crate::plan::{task::TaskFile, Spec};
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -24,6 +31,83 @@ pub struct Ergonomics {
     pub total_absolute_work_j: f64,
     /// The largest |τ q̇| of any joint, if there is any motion.
     pub peak_power: Option<PeakPower>,
+    /// L5/S1 compression and shear ([`lumbar`]), when the figure has a lumbar joint and the report its loads.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub low_back: Option<lumbar::LowBack>,
+    /// The revised NIOSH lifting equation ([`niosh`]), for a task with `[ergonomics.lift]`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lifting_equation: Option<niosh::LiftingIndex>,
+    /// Strength that depends on angle and velocity, and the population share capable ([`strength`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub strength_model: Option<strength::StrengthReport>,
+}
+
+/// A task's `[ergonomics]` resolved against its model.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Setup {
+    /// The dof whose load is L5/S1's.
+    pub lumbar: Option<usize>,
+    /// `[ergonomics.lift]`.
+    pub lift: Option<niosh::Lift>,
+    /// Every joint's strength, in `q` order.
+    pub strength: Vec<strength::Source>,
+    /// `σ/T` at constant joints.
+    pub population_cv: f64,
+}
+
+impl Setup {
+    /// `[ergonomics]` of `file` against `spec` (the model with its payloads, gravity); errors name `origin`
+    /// and the field.
+    pub fn resolve(file: &TaskFile, spec: &Spec, origin: &str) -> Result<Setup> {
+        let e = &file.ergonomics;
+        let model = &spec.model;
+        let lumbar = match &e.lumbar_joint {
+            Some(name) => Some(model.dof_index(name).ok_or_else(|| {
+                let message = format!("the model has no joint called \"{name}\"; its joints: {}", model.joint_names().join(", "));
+                Error::task(origin, "ergonomics.lumbar_joint", message)
+            })?),
+            None => model.dof_index("lumbar"),
+        };
+        let population_cv = e.population_cv.unwrap_or(strength::DEFAULT_CV);
+        if !(population_cv.is_finite() && population_cv > 0.0 && population_cv < 1.0) {
+            let message = format!("must be a coefficient of variation between 0 and 1, got {population_cv}");
+            return Err(Error::task(origin, "ergonomics.population_cv", message));
+        }
+        let lift = e.lift.as_ref().map(|l| niosh::resolve(l, file, model, &spec.gravity, origin)).transpose()?;
+        let strength = strength::resolve(file, model, origin)?;
+        Ok(Setup { lumbar, lift, strength, population_cv })
+    }
+
+    /// Refuses, before planning, a lift the equation does not cover: from the start and goal postures,
+    /// where the planned path begins and ends (skipped when the goal posture is an unknown).
+    pub fn check_lift(&self, spec: &Spec, origin: &str) -> Result<()> {
+        match &self.lift {
+            Some(lift) if !spec.goal_is_free() => {
+                niosh::assess(&spec.model, lift, (0.0, &spec.start), (spec.duration, &spec.goal), origin).map(|_| ())
+            }
+            _ => Ok(()),
+        }
+    }
+}
+
+impl Ergonomics {
+    /// Adds the low-back load (from the joint loads `series`), the lifting equation and the strength model
+    /// of `setup` to the report of `record`.
+    pub fn add_measures(
+        &mut self,
+        model: &Model,
+        record: &PlanRecord,
+        setup: &Setup,
+        series: &loads::LoadSeries,
+        origin: &str,
+    ) -> Result<()> {
+        self.low_back = setup.lumbar.map(|l| lumbar::low_back(model, record, series, l));
+        if let (Some(lift), Some(first), Some(last)) = (&setup.lift, record.samples.first(), record.samples.last()) {
+            self.lifting_equation = Some(niosh::assess(model, lift, (first.t, &first.q), (last.t, &last.q), origin)?);
+        }
+        self.strength_model = Some(strength::assess(model, record, &setup.strength, setup.population_cv));
+        Ok(())
+    }
 }
 
 /// The largest joint power of the motion.
@@ -89,6 +173,9 @@ pub fn ergonomics(model: &Model, record: &PlanRecord, strength_overrides: &BTree
         total_absolute_work_j: joints.iter().map(|j| j.absolute_work_j).fold(0.0, |a, b| a + b),
         joints,
         peak_power,
+        low_back: None,
+        lifting_equation: None,
+        strength_model: None,
     })
 }
 
@@ -251,5 +338,56 @@ pub fn text_table(e: &Ergonomics) -> String {
         let spans: Vec<String> = j.intervals_above_limit.iter().map(|[a, b]| format!("{a:.3}–{b:.3} s")).collect();
         let _ = writeln!(out, "{} above its strength: {}", j.name, spans.join(", "));
     }
+    measures_text(e, &mut out);
     out
+}
+
+/// The low back, the lifting equation and the strength model, for [`text_table`].
+fn measures_text(e: &Ergonomics, out: &mut String) {
+    let spans = |v: &[[f64; 2]]| v.iter().map(|[a, b]| format!("{a:.3}–{b:.3} s")).collect::<Vec<_>>().join(", ");
+    if let Some(b) = &e.low_back {
+        let _ = writeln!(
+            out,
+            "L5/S1 ({}): peak compression {:.0} N at {:.3} s (NIOSH action limit {:.0} N, maximum {:.0} N); peak shear {:.0} N at {:.3} s",
+            b.joint, b.peak_compression_n, b.peak_compression_time_s, b.action_limit_n, b.maximum_permissible_limit_n, b.peak_shear_n, b.peak_shear_time_s
+        );
+        for (name, v) in
+            [("action limit", &b.intervals_above_action_limit), ("maximum permissible limit", &b.intervals_above_maximum_limit)]
+        {
+            if !v.is_empty() {
+                let _ = writeln!(out, "L5/S1 compression above the {name}: {}", spans(v));
+            }
+        }
+    }
+    if let Some(l) = &e.lifting_equation {
+        let _ = writeln!(
+            out,
+            "NIOSH lifting equation: load {:.1} kg, {} lifts/min, {} duration, {} coupling, D {:.1} cm: lifting index {:.2}",
+            l.load_kg, l.frequency_per_min, l.duration, l.coupling, l.vertical_travel_cm, l.lifting_index
+        );
+        for (name, end) in [("origin", &l.origin), ("destination", &l.destination)] {
+            let (p, m) = (&end.location, &end.multipliers);
+            let _ = writeln!(
+                out,
+                "  {name} ({:.3} s): H {:.1} cm, V {:.1} cm, A {:.1}°; HM {:.3} VM {:.3} DM {:.3} AM {:.3} FM {:.3} CM {:.3}: RWL {:.2} kg, LI {:.2}",
+                end.time_s, p.horizontal_cm, p.vertical_cm, p.asymmetry_deg, m.hm, m.vm, m.dm, m.am, m.fm, m.cm, m.rwl_kg, end.lifting_index
+            );
+        }
+    }
+    if let Some(s) = &e.strength_model {
+        for j in &s.joints {
+            let _ = writeln!(
+                out,
+                "strength {}: {}; peak {:.0}% of it at {:.3} s; {:.1}% of the population capable (least, at {:.3} s)",
+                j.name,
+                j.source,
+                100.0 * j.peak_share,
+                j.peak_share_time_s,
+                j.least_capable_percent,
+                j.least_capable_time_s
+            );
+        }
+        let limiting = s.limiting_joint.as_ref().map_or(String::new(), |j| format!(" ({j} at {:.3} s)", s.limiting_time_s));
+        let _ = writeln!(out, "population capable: {:.1}%{limiting}", s.population_capable_percent);
+    }
 }

@@ -15,7 +15,7 @@ const PANEL_WIDTH: u32 = 520;
 const PANEL_HEIGHT: u32 = 240;
 const TITLE_HEIGHT: u32 = 44;
 /// PNGs are rendered at twice the SVG size, for legible lettering.
-const PNG_SCALE: f32 = 2.0;
+pub(crate) const PNG_SCALE: f32 = 2.0;
 /// A strength limit further than this many times the largest |τ| is left off the torque panel's scale
 /// (it would squash the curves flat) and named in the caption instead.
 const LIMIT_ON_SCALE: f64 = 2.0;
@@ -131,12 +131,12 @@ pub(crate) fn drawing_error(e: impl std::fmt::Display) -> Error {
 }
 
 /// Rows and columns of panels: one column for a few joints, two beyond.
-fn grid(panels: usize) -> (usize, usize) {
+pub(crate) fn grid(panels: usize) -> (usize, usize) {
     let columns = if panels <= 3 { 1 } else { 2 };
     (panels.div_ceil(columns).max(1), columns)
 }
 
-fn canvas_size((rows, columns): (usize, usize)) -> (u32, u32) {
+pub(crate) fn canvas_size((rows, columns): (usize, usize)) -> (u32, u32) {
     (PANEL_WIDTH * columns as u32, PANEL_HEIGHT * rows as u32 + TITLE_HEIGHT)
 }
 
@@ -151,7 +151,7 @@ pub(crate) fn padded_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     (lo - pad, hi + pad)
 }
 
-fn time_range(record: &PlanRecord) -> (f64, f64) {
+pub(crate) fn time_range(record: &PlanRecord) -> (f64, f64) {
     let first = record.samples.first().map_or(0.0, |s| s.t);
     let last = record.samples.last().map_or(1.0, |s| s.t);
     if last > first {

@@ -87,6 +87,8 @@ impl Task {
         let spec = resolve(&file, &base, &origin)?;
         resolve::strength_names(&file, &spec.model, &origin)?;
         super::validate(&spec, &origin)?;
+        // `[ergonomics]`: its names and numbers, and a lift the lifting equation does not cover, refused now.
+        crate::report::ergonomics::Setup::resolve(&file, &spec, &origin)?.check_lift(&spec, &origin)?;
         let mut warnings = resolve::radian_warnings(&file, &spec.model, &origin);
         let up = up::axis(&file.environment.up, &origin)?;
         warnings.extend(up::rest_pose_warning(&spec.model, &up, &origin));

@@ -38,6 +38,70 @@ pub struct TaskFile {
     /// `[output]`: what the plan directory holds.
     #[serde(default)]
     pub output: OutputSection,
+    /// `[ergonomics]`: the low-back load, the lifting equation and the strength model of the report
+    /// (`docs/ergonomics.md`).
+    #[serde(default, skip_serializing_if = "ErgonomicsSection::is_default")]
+    pub ergonomics: ErgonomicsSection,
+}
+
+/// `[ergonomics]`: what the ergonomic report assesses beyond peak torques (`docs/ergonomics.md`).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ErgonomicsSection {
+    /// The joint whose load gives the L5/S1 compression and shear (default "lumbar", when the model has it).
+    pub lumbar_joint: Option<String>,
+    /// Coefficient of variation of the population's strength at joints of constant strength (default
+    /// 0.22; Anderson et al.'s surfaces carry their own).
+    pub population_cv: Option<f64>,
+    /// `[ergonomics.lift]`: assess the motion with the revised NIOSH lifting equation.
+    pub lift: Option<LiftSpec>,
+    /// `[ergonomics.strength.JOINT]`: where a joint's strength comes from (default: Anderson et al. 2007
+    /// for a built-in human's hips, knees and ankles, the model's effort limits elsewhere).
+    #[serde(default)]
+    pub strength: BTreeMap<String, StrengthSpec>,
+}
+
+impl ErgonomicsSection {
+    /// Whether the section is absent (nothing to write in a resolved task).
+    pub fn is_default(&self) -> bool {
+        *self == ErgonomicsSection::default()
+    }
+}
+
+/// `[ergonomics.lift]`: the lift's frequency, duration and coupling (Waters et al. 1993); H, V, D and A
+/// come from the planned hand path.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LiftSpec {
+    /// Lifts per minute (F).
+    pub frequency_per_min: f64,
+    /// Work duration: "short" (≤ 1 h), "moderate" (1–2 h) or "long" (2–8 h).
+    pub duration: String,
+    /// Hand-to-object coupling: "good", "fair" or "poor".
+    pub coupling: String,
+    /// The frames whose midpoint is the hands (default "hands", else "left_hand" and "right_hand").
+    pub hands: Option<Vec<String>>,
+    /// The load lifted (kg); default the payloads' total mass.
+    pub load_kg: Option<f64>,
+}
+
+/// `[ergonomics.strength.JOINT]`: a joint's strength in each direction.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StrengthSpec {
+    /// "anderson2007" (torque–angle–velocity surfaces) or "constant".
+    pub source: String,
+    /// anderson2007: which of its joints, "hip", "knee" or "ankle" (default the joint's name).
+    pub joint: Option<String>,
+    /// anderson2007: how many limbs the joint stands for (2 for a lumped pair; default 1).
+    pub limbs: Option<u32>,
+    /// anderson2007: which torque sign is flexion (dorsiflexion at the ankle), "positive" (default, the
+    /// built-in humans' convention) or "negative".
+    pub flexion: Option<String>,
+    /// constant: strength along `+axis` (N·m).
+    pub positive_nm: Option<f64>,
+    /// constant: strength along `−axis` (N·m, a magnitude).
+    pub negative_nm: Option<f64>,
 }
 
 /// Which figure: exactly one of `urdf`, `figure` or `human`.

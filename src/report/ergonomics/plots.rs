@@ -1,0 +1,151 @@
+//! Plots of the ergonomic measures: the joint loads (force and moment components, child-body axes), the
+//! L5/S1 compression and shear against NIOSH's limits, and each joint's torque as a share of its strength.
+//! Each an SVG and a PNG, like the motion's plots.
+
+use super::loads::LoadSeries;
+use super::Ergonomics;
+use crate::error::Result;
+use crate::model::Model;
+use crate::report::plots::{canvas_size, draw_legend, drawing_error, grid, padded_range, time_range, PNG_SCALE};
+use crate::report::record::PlanRecord;
+use plotters::prelude::*;
+
+const COLOURS: [RGBColor; 3] = [RGBColor(200, 60, 50), RGBColor(40, 150, 70), RGBColor(31, 90, 170)];
+const LIMIT: RGBColor = RGBColor(150, 40, 40);
+
+/// One panel: curves against time and horizontal reference levels.
+struct Panel {
+    caption: String,
+    unit: &'static str,
+    curves: Vec<(String, Vec<(f64, f64)>)>,
+    levels: Vec<(String, f64)>,
+}
+
+/// Every ergonomic plot of `record` as `(file name, bytes)`: `joint_forces`, `joint_moments` (with the
+/// loads), `low_back` and `strength_share` (when the report has them), each `.svg` and `.png`.
+pub fn plots(model: &Model, record: &PlanRecord, series: Option<&LoadSeries>, e: &Ergonomics) -> Result<Vec<(String, Vec<u8>)>> {
+    let mut svgs: Vec<(&str, String)> = Vec::new();
+    if let Some(series) = series.filter(|_| model.nv() > 0 && !record.samples.is_empty()) {
+        for (stem, title, unit, moment) in [
+            ("joint_forces", "Joint force on the child body", "N", false),
+            ("joint_moments", "Joint moment on the child body", "N·m", true),
+        ] {
+            let panels = load_panels(model, record, series, unit, moment);
+            svgs.push((stem, lines_svg(&format!("{title} (child-body axes) — {}", record.model_name), record, &panels)?));
+        }
+    }
+    if let Some(b) = e.low_back.as_ref().filter(|b| !b.samples.is_empty()) {
+        let curve = |f: fn(&super::lumbar::LowBackSample) -> f64| b.samples.iter().map(|s| (s.t, f(s))).collect();
+        let panels = [
+            Panel {
+                caption: format!("L5/S1 compression at {} (N)", b.joint),
+                unit: "N",
+                curves: vec![("compression".into(), curve(|s| s.compression_n))],
+                levels: vec![
+                    ("NIOSH action limit".into(), b.action_limit_n),
+                    ("maximum permissible".into(), b.maximum_permissible_limit_n),
+                ],
+            },
+            Panel {
+                caption: format!("L5/S1 shear at {} (N, + forward)", b.joint),
+                unit: "N",
+                curves: vec![("shear".into(), curve(|s| s.shear_n))],
+                levels: vec![],
+            },
+        ];
+        svgs.push(("low_back", lines_svg(&format!("Low-back load — {}", record.model_name), record, &panels)?));
+    }
+    if let Some(s) = e.strength_model.as_ref().filter(|s| !s.joints.is_empty()) {
+        let panels: Vec<Panel> = s
+            .joints
+            .iter()
+            .zip(&s.shares)
+            .map(|(j, share)| Panel {
+                caption: format!("{} — {} (% of strength)", j.name, j.source),
+                unit: "%",
+                curves: vec![(
+                    "|τ| / strength".into(),
+                    record.samples.iter().zip(share).map(|(r, x)| (r.t, 100.0 * x)).collect(),
+                )],
+                levels: vec![("mean strength".into(), 100.0)],
+            })
+            .collect();
+        svgs.push((
+            "strength_share",
+            lines_svg(&format!("Torque as a share of strength — {}", record.model_name), record, &panels)?,
+        ));
+    }
+    let mut files = Vec::new();
+    for (stem, svg) in svgs {
+        let png = crate::report::render::svg_to_png(&svg, PNG_SCALE, "plots")?;
+        files.push((format!("{stem}.svg"), svg.into_bytes()));
+        files.push((format!("{stem}.png"), png));
+    }
+    Ok(files)
+}
+
+/// A panel per joint with the x, y, z components of its force (or moment).
+fn load_panels(model: &Model, record: &PlanRecord, series: &LoadSeries, unit: &'static str, moment: bool) -> Vec<Panel> {
+    (0..model.nv())
+        .map(|i| {
+            let component = |axis: usize| -> Vec<(f64, f64)> {
+                record
+                    .samples
+                    .iter()
+                    .zip(series)
+                    .map(|(s, l)| (s.t, if moment { l[i].moment[axis] } else { l[i].force[axis] }))
+                    .collect()
+            };
+            let prefix = if moment { "M" } else { "F" };
+            Panel {
+                caption: format!("{} ({unit})", model.joints[i + 1].name),
+                unit,
+                curves: ["x", "y", "z"].iter().enumerate().map(|(k, a)| (format!("{prefix}{a}"), component(k))).collect(),
+                levels: vec![],
+            }
+        })
+        .collect()
+}
+
+/// The panels on one canvas, titled.
+fn lines_svg(title: &str, record: &PlanRecord, panels: &[Panel]) -> Result<String> {
+    let layout = grid(panels.len());
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, canvas_size(layout)).into_drawing_area();
+        root.fill(&WHITE).map_err(drawing_error)?;
+        let body = root.titled(title, ("sans-serif", 22)).map_err(drawing_error)?;
+        for (panel, area) in panels.iter().zip(body.split_evenly(layout).iter()) {
+            let x = time_range(record);
+            let values = panel.curves.iter().flat_map(|(_, c)| c.iter().map(|p| p.1)).chain(panel.levels.iter().map(|l| l.1));
+            let y = padded_range(values);
+            let mut chart = ChartBuilder::on(area)
+                .caption(&panel.caption, ("sans-serif", 15))
+                .margin(6)
+                .x_label_area_size(34)
+                .y_label_area_size(58)
+                .build_cartesian_2d(x.0..x.1, y.0..y.1)
+                .map_err(drawing_error)?;
+            chart
+                .configure_mesh()
+                .x_desc("time (s)")
+                .y_desc(panel.unit)
+                .light_line_style(WHITE.mix(0.0))
+                .draw()
+                .map_err(drawing_error)?;
+            for ((label, points), colour) in panel.curves.iter().zip(COLOURS.iter().cycle()) {
+                let colour = *colour;
+                let drawn = chart.draw_series(LineSeries::new(points.clone(), colour.stroke_width(2))).map_err(drawing_error)?;
+                drawn.label(label).legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], colour.stroke_width(2)));
+            }
+            for (k, (label, level)) in panel.levels.iter().enumerate() {
+                let style = LIMIT.mix(if k == 0 { 0.6 } else { 1.0 }).stroke_width(1 + k as u32);
+                let drawn = chart.draw_series(LineSeries::new([(x.0, *level), (x.1, *level)], style)).map_err(drawing_error)?;
+                drawn.label(label).legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], style));
+            }
+            draw_legend(&mut chart, SeriesLabelPosition::UpperRight, 12)?;
+        }
+        root.present().map_err(drawing_error)?;
+    }
+    Ok(svg)
+}

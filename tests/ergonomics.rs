@@ -1,0 +1,283 @@
+//! The ergonomist's measures (docs/ergonomics.md): joint loads against an independent Newton–Euler
+//! balance of each subtree's momentum, the lifting equation against a hand calculation, the strength
+//! surfaces, and physical claims of the stoop and squat lifts against each other; bad input refused.
+
+use mintorque::dynamics::joint_loads::{joint_loads, PointForce};
+use mintorque::dynamics::{kinematics, Data};
+use mintorque::model::human::{self, HumanParams, Structure};
+use mintorque::plan::{self, task::Task};
+use mintorque::report::ergonomics::niosh::{recommended_weight_limit, Coupling, Location, WorkDuration};
+use mintorque::report::ergonomics::strength::{normal_cdf, Source, ANDERSON_2007_MEN_18_25};
+use mintorque::report::ergonomics::{self, loads, Setup};
+use mintorque::report::record::PlanRecord;
+use mintorque::spatial::{Force, Vec3};
+use std::path::Path;
+use std::process::Command;
+use std::sync::OnceLock;
+
+fn example(name: &str) -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("examples").join(format!("{name}.toml"))
+}
+
+/// Spatial momentum of the subtree of body `b` about the world origin, `Σ oIⱼ vⱼ`, at `(q, v)`.
+fn subtree_momentum(model: &mintorque::Model, data: &mut Data, q: &[f64], v: &[f64], b: usize) -> Force {
+    kinematics::placements(model, data, q);
+    kinematics::velocities(model, data, v);
+    let mut h = Force::ZERO;
+    for j in b..model.bodies.len() {
+        let mut k = j;
+        while k > b {
+            k = model.joints[k].parent;
+        }
+        if k == b {
+            h += data.oI[j].mul(&data.v[j]);
+        }
+    }
+    h
+}
+
+#[test]
+fn joint_loads_balance_each_subtrees_momentum() {
+    // Newton–Euler of every subtree, by finite differences of its momentum along q(t) = q + v t + ½ a t²:
+    // F_joint + Σ weights + F_ext = dh/dt, every wrench in world axes about the world origin.
+    let model = human::build(Structure::Sagittal, HumanParams::default()).unwrap();
+    let nv = model.nv();
+    let q: Vec<f64> = (0..nv).map(|i| 0.3 * ((i as f64) * 1.7).sin()).collect();
+    let v: Vec<f64> = (0..nv).map(|i| 0.8 * ((i as f64) * 0.9 + 0.4).cos()).collect();
+    let a: Vec<f64> = (0..nv).map(|i| 1.5 * ((i as f64) * 2.3 + 1.0).sin()).collect();
+    let g = Vec3::new(0.0, 0.0, -9.81);
+    let mut data = Data::new(&model);
+    let hands = model.frames.iter().position(|f| f.name == "hands").unwrap();
+    kinematics::placements(&model, &mut data, &q);
+    let push = PointForce {
+        body: model.frames[hands].body,
+        point: kinematics::frame_placement(&model, &data, hands).translation,
+        force: Vec3::new(40.0, -5.0, 120.0),
+    };
+    let loads = joint_loads(&model, &mut data, &q, &v, &a, &g, &[push]);
+    let placements: Vec<_> = data.oMi.clone();
+    let dt = 1e-5;
+    let state = |t: f64| -> (Vec<f64>, Vec<f64>) {
+        let qt = (0..nv).map(|i| q[i] + v[i] * t + 0.5 * a[i] * t * t).collect();
+        let vt = (0..nv).map(|i| v[i] + a[i] * t).collect();
+        (qt, vt)
+    };
+    for (i, load) in loads.iter().enumerate() {
+        let b = i + 1;
+        let (qp, vp) = state(dt);
+        let (qm, vm) = state(-dt);
+        let dh =
+            (subtree_momentum(&model, &mut data, &qp, &vp, b) - subtree_momentum(&model, &mut data, &qm, &vm, b)) * (0.5 / dt);
+        // Weights [c × m g; m g] and the push, if its body is in the subtree.
+        kinematics::placements(&model, &mut data, &q);
+        let mut applied = placements[b].act_force(&Force::new(load.moment, load.force));
+        for j in b..model.bodies.len() {
+            let mut k = j;
+            while k > b {
+                k = model.joints[k].parent;
+            }
+            if k != b {
+                continue;
+            }
+            let inertia = &model.bodies[j].inertia;
+            let c = data.oMi[j].act_point(&inertia.com);
+            applied += Force::new(c.cross(&(g * inertia.mass)), g * inertia.mass);
+            if j == push.body {
+                applied += Force::new(push.point.cross(&push.force), push.force);
+            }
+        }
+        let error = (applied - dh).to_vec6().norm();
+        assert!(
+            error < 1e-4 * (1.0 + dh.to_vec6().norm()),
+            "joint {}: applied {applied:?} vs dh/dt {dh:?}",
+            model.joints[b].name
+        );
+    }
+}
+
+#[test]
+fn the_lifting_equation_matches_a_hand_calculation() {
+    // docs/ergonomics.md's worked example: H = 40 cm, V = 30 → 130 cm (D = 100), A = 0°, 1 lift/min for
+    // under an hour, good coupling, 15 kg.
+    let at = Location { horizontal_cm: 40.0, vertical_cm: 30.0, asymmetry_deg: 0.0 };
+    let m = recommended_weight_limit(&at, 100.0, 1.0, WorkDuration::Short, Coupling::Good).unwrap();
+    let (hm, vm, dm, am, fm, cm) = (25.0 / 40.0, 1.0 - 0.003 * 45.0, 0.82 + 4.5 / 100.0, 1.0, 0.94, 1.0);
+    let rwl = 23.0 * hm * vm * dm * am * fm * cm; // 10.11 kg
+    assert!((m.rwl_kg - rwl).abs() < 1e-12 && (rwl - 10.110).abs() < 1e-3, "{m:?}");
+    assert!((15.0 / m.rwl_kg - 1.4837).abs() < 1e-3);
+    // A 45° twist lowers the limit by AM = 1 − 0.0032·45; poor coupling by 0.90; 4 lifts/min in a long shift by FM 0.45.
+    let twisted =
+        recommended_weight_limit(&Location { asymmetry_deg: 45.0, ..at }, 100.0, 1.0, WorkDuration::Short, Coupling::Good);
+    assert!((twisted.unwrap().rwl_kg - rwl * (1.0 - 0.0032 * 45.0)).abs() < 1e-12);
+    let poor = recommended_weight_limit(&at, 100.0, 1.0, WorkDuration::Short, Coupling::Poor).unwrap();
+    assert!((poor.rwl_kg - rwl * 0.90).abs() < 1e-12);
+    let long = recommended_weight_limit(&at, 100.0, 4.0, WorkDuration::Long, Coupling::Good).unwrap();
+    assert!((long.rwl_kg - rwl / 0.94 * 0.45).abs() < 1e-12);
+    // Outside the equation: refused, naming the variable.
+    for (loc, d, f, dur, what) in [
+        (Location { horizontal_cm: 70.0, ..at }, 100.0, 1.0, WorkDuration::Short, "H = 70.0"),
+        (Location { vertical_cm: 180.0, ..at }, 100.0, 1.0, WorkDuration::Short, "V = 180.0"),
+        (Location { asymmetry_deg: 140.0, ..at }, 100.0, 1.0, WorkDuration::Short, "A = 140.0"),
+        (at, 100.0, 16.0, WorkDuration::Short, "16 lifts/min"),
+        (at, 100.0, 10.0, WorkDuration::Long, "10 lifts/min"),
+    ] {
+        let e = recommended_weight_limit(&loc, d, f, dur, Coupling::Good).unwrap_err();
+        assert!(e.contains(what), "{e}");
+    }
+}
+
+#[test]
+fn strength_surfaces_peak_at_c3_fall_with_speed_and_half_the_population_matches_the_mean() {
+    let mgh = 75.0 * 9.81 * 1.75;
+    let knee = Source::Anderson { joint: 1, scale: 2.0 * mgh, flexion_sign: 1.0, label: String::new() };
+    let ext = ANDERSON_2007_MEN_18_25[1][0];
+    // An extensor torque (τ < 0) at θ = C₃, isometric: 2 legs × C₁ m g h.
+    let (mean, sd) = knee.strength(ext.c[2], 0.0, -100.0, 0.22).unwrap();
+    assert!((mean - 2.0 * 0.163 * mgh).abs() < 1e-9 && (sd / mean - 0.040 / 0.163).abs() < 1e-12);
+    // Extending at C₄ rad/s (q̇ < 0, concentric for the extensors): 75 %; at C₅: 50 %; eccentric: 100 %.
+    for (qd, share) in [(-ext.c[3], 0.75), (-ext.c[4], 0.5), (2.0, 1.0)] {
+        let (s, _) = knee.strength(ext.c[2], qd, -100.0, 0.22).unwrap();
+        assert!((s / mean - share).abs() < 1e-12, "q̇ = {qd}: {}", s / mean);
+    }
+    // Away from C₃ the knee is weaker.
+    assert!(knee.strength(ext.c[2] + 0.5, 0.0, -100.0, 0.22).unwrap().0 < mean);
+    assert!((normal_cdf(0.0) - 0.5).abs() < 1e-7 && (normal_cdf(1.0) - 0.841_344_746).abs() < 1e-6);
+    assert!((normal_cdf(-1.959_964) - 0.025).abs() < 1e-6);
+}
+
+struct Lift {
+    record: PlanRecord,
+    e: ergonomics::Ergonomics,
+    series: loads::LoadSeries,
+    model: mintorque::Model,
+}
+
+fn lift(name: &str) -> &'static Lift {
+    static STOOP: OnceLock<Lift> = OnceLock::new();
+    static SQUAT: OnceLock<Lift> = OnceLock::new();
+    let cell = if name == "lift_stoop" { &STOOP } else { &SQUAT };
+    cell.get_or_init(|| {
+        let mut task = Task::load(&example(name)).unwrap();
+        let planned = task.plan(&mut |_| {}).unwrap();
+        assert!(planned.converged(), "{name}: {}", planned.outcome.reason);
+        let spec = &task.spec;
+        let times = mintorque::report::sample_times(spec.duration, 100.0);
+        let samples = plan::sample(spec, &planned, &times).unwrap();
+        let record = PlanRecord::new(spec, &planned, &samples);
+        let origin = task.path.display().to_string();
+        let setup = Setup::resolve(&task.file, spec, &origin).unwrap();
+        let series = loads::series(&spec.model, &record, &spec.loads).unwrap();
+        let mut e = ergonomics::ergonomics(&spec.model, &record, &Default::default()).unwrap();
+        e.add_measures(&spec.model, &record, &setup, &series, &origin).unwrap();
+        Lift { record, e, series, model: spec.model.clone() }
+    })
+}
+
+#[test]
+fn the_joint_loads_of_a_plan_carry_its_torques_and_the_weight_above_the_ankles() {
+    let l = lift("lift_squat");
+    for (s, loads) in l.record.samples.iter().zip(&l.series) {
+        for (i, load) in loads.iter().enumerate() {
+            // The moment along the joint axis is the joint torque: active plus passive.
+            let j = &l.model.joints[i + 1];
+            let total = s.tau[i] + j.passive.torque(s.q[i], s.qd[i]);
+            assert!((load.moment.dot(&j.axis) - total).abs() < 1e-6 * (1.0 + total.abs()), "{} at {}", j.name, s.t);
+        }
+    }
+    // Held at the start: the ankles carry the weight of everything above the feet, and the box.
+    let above: f64 = l.model.bodies[1..].iter().map(|b| b.inertia.mass).sum();
+    let f = l.series[0][0].force;
+    assert!((f.norm() - above * 9.81).abs() < 1e-6 * above * 9.81, "{f:?} vs {} N", above * 9.81);
+}
+
+#[test]
+fn the_squat_loads_the_knees_more_and_both_lifts_load_the_back_early() {
+    let (stoop, squat) = (lift("lift_stoop"), lift("lift_squat"));
+    let peak = |l: &Lift, joint: &str| l.e.joints.iter().find(|j| j.name == joint).unwrap().peak_abs_torque;
+    // The squat's knee torque is higher than the stoop's (its knees nearly straight): by more than 20 %.
+    assert!(peak(squat, "knee") > 1.2 * peak(stoop, "knee"), "{} vs {}", peak(squat, "knee"), peak(stoop, "knee"));
+    // L5/S1 compression peaks in the first half of each lift: the first half's peak beats the second's.
+    for l in [stoop, squat] {
+        let b = l.e.low_back.as_ref().unwrap();
+        let half = l.record.duration / 2.0;
+        let max =
+            |first: bool| b.samples.iter().filter(|s| (s.t < half) == first).map(|s| s.compression_n).fold(f64::MIN, f64::max);
+        assert!(max(true) > 1.3 * max(false), "{}: {} vs {}", l.record.model_name, max(true), max(false));
+        assert!(b.peak_compression_time_s < half);
+        assert!(b.intervals_above_action_limit.iter().all(|[a, z]| z > a));
+    }
+    // The squat starts with the box closer to the ankles than the stoop (smaller H), so its origin's
+    // recommended weight limit is higher.
+    let (a, b) = (stoop.e.lifting_equation.as_ref().unwrap(), squat.e.lifting_equation.as_ref().unwrap());
+    assert!(b.origin.location.horizontal_cm < a.origin.location.horizontal_cm);
+    assert!(b.origin.multipliers.rwl_kg > a.origin.multipliers.rwl_kg);
+    // H and V of the origin from the hand and ankle frames, computed here.
+    let mut data = Data::new(&stoop.model);
+    kinematics::placements(&stoop.model, &mut data, &stoop.record.samples[0].q);
+    let hands = stoop.model.frames.iter().position(|f| f.name == "hands").unwrap();
+    let p = kinematics::frame_placement(&stoop.model, &data, hands).translation;
+    let ankle = data.oMi[1].translation;
+    assert!((a.origin.location.horizontal_cm - 100.0 * ((p - ankle).x.hypot((p - ankle).y))).abs() < 1e-9);
+    assert!((a.origin.location.vertical_cm - 100.0 * p.z).abs() < 1e-9);
+}
+
+fn run(args: &[&str]) -> (i32, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_mintorque")).args(args).output().unwrap();
+    (out.status.code().unwrap_or(-1), String::from_utf8_lossy(&out.stderr).into_owned())
+}
+
+/// `lift_squat.toml` with `edit` applied to its text, written to a temporary file.
+fn edited(name: &str, edit: impl Fn(String) -> String) -> std::path::PathBuf {
+    let text = edit(std::fs::read_to_string(example("lift_squat")).unwrap());
+    let dir = std::env::temp_dir().join(format!("mintorque-ergonomics-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+#[test]
+fn bad_ergonomic_input_is_refused_naming_the_file_and_field() {
+    let out = std::env::temp_dir().join(format!("mintorque-ergonomics-out-{}", std::process::id()));
+    type Edit = Box<dyn Fn(String) -> String>;
+    let cases: [(&str, Edit, &[&str]); 5] = [
+        ("no_frequency.toml", Box::new(|t: String| t.replace("frequency_per_min = 1.0", "")), &["frequency_per_min"]),
+        (
+            "no_payload.toml",
+            Box::new(|t: String| {
+                t.replace("[[environment.payload]]", "[[environment.force]]")
+                    .replace("mass = 15.0                    # kg\ninertia = [0.08, 0.12, 0.08]", "force = [0.0, 0.0, -10.0]")
+            }),
+            &["ergonomics.lift.load_kg", "no load"],
+        ),
+        (
+            "bad_coupling.toml",
+            Box::new(|t: String| t.replace("coupling = \"good\"", "coupling = \"excellent\"")),
+            &["ergonomics.lift.coupling"],
+        ),
+        (
+            "one_direction.toml",
+            Box::new(|t: String| t + "\n[ergonomics.strength.elbow]\nsource = \"constant\"\npositive_nm = 70.0\n"),
+            &["ergonomics.strength.elbow.negative_nm", "both directions"],
+        ),
+        (
+            "moon.toml",
+            Box::new(|t: String| t.replace("gravity = \"earth\"", "gravity = \"moon\"")),
+            &["environment.gravity", "Earth"],
+        ),
+    ];
+    for (name, edit, expected) in cases {
+        let path = edited(name, edit);
+        let (code, stderr) = run(&["plan", path.to_str().unwrap(), "--out", out.to_str().unwrap(), "-q"]);
+        assert_eq!(code, 1, "{name}: {stderr}");
+        assert!(stderr.contains(name), "{name}: the message names the file: {stderr}");
+        for e in expected {
+            assert!(stderr.contains(e), "{name}: expected \"{e}\" in {stderr}");
+        }
+    }
+    // A lift that starts with the hands behind the ankles (A = 180°) is not one the equation covers.
+    let behind = edited("behind.toml", |t| t.replace("shoulder = 75.0", "shoulder = 0.0"));
+    let (code, stderr) = run(&["plan", behind.to_str().unwrap(), "--out", out.to_str().unwrap(), "-q"]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(stderr.contains("ergonomics.lift") && stderr.contains("A = 180.0°"), "{stderr}");
+}
