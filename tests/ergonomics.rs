@@ -191,11 +191,13 @@ fn the_joint_loads_of_a_plan_carry_its_torques_and_the_weight_above_the_ankles()
 }
 
 #[test]
-fn the_squat_loads_the_knees_more_and_both_lifts_load_the_back_early() {
+fn squat_knees_extend_stoop_knees_flex_and_both_lifts_load_the_back_early() {
     let (stoop, squat) = (lift("lift_stoop"), lift("lift_squat"));
-    let peak = |l: &Lift, joint: &str| l.e.joints.iter().find(|j| j.name == joint).unwrap().peak_abs_torque;
-    // The squat's knee torque is higher than the stoop's (its knees nearly straight): by more than 20 %.
-    assert!(peak(squat, "knee") > 1.2 * peak(stoop, "knee"), "{} vs {}", peak(squat, "knee"), peak(stoop, "knee"));
+    // At the held start the squat's bent knees push as extensors (τ < 0: the body's weight acts behind
+    // them) and the stoop's straight knees hold as flexors (τ > 0: hips back, the weight in front of the
+    // knee line) — the same box at the same place, opposite knee work.
+    let knee_at_start = |l: &Lift| l.record.samples[0].tau[l.model.dof_index("knee").unwrap()];
+    assert!(knee_at_start(squat) < -20.0 && knee_at_start(stoop) > 20.0, "{} vs {}", knee_at_start(squat), knee_at_start(stoop));
     // L5/S1 compression peaks in the first half of each lift: the first half's peak beats the second's.
     for l in [stoop, squat] {
         let b = l.e.low_back.as_ref().unwrap();
@@ -206,11 +208,14 @@ fn the_squat_loads_the_knees_more_and_both_lifts_load_the_back_early() {
         assert!(b.peak_compression_time_s < half);
         assert!(b.intervals_above_action_limit.iter().all(|[a, z]| z > a));
     }
-    // The squat starts with the box closer to the ankles than the stoop (smaller H), so its origin's
-    // recommended weight limit is higher.
+    // Both lifts take the box up at the same place (H within 2 cm, V within 5 cm): the lifting equation,
+    // which sees only where the load is, gives both origins the same recommended weight limit (within
+    // 5 %), while the joint torques above differ by posture.
     let (a, b) = (stoop.e.lifting_equation.as_ref().unwrap(), squat.e.lifting_equation.as_ref().unwrap());
-    assert!(b.origin.location.horizontal_cm < a.origin.location.horizontal_cm);
-    assert!(b.origin.multipliers.rwl_kg > a.origin.multipliers.rwl_kg);
+    let (la, lb) = (&a.origin.location, &b.origin.location);
+    assert!((la.horizontal_cm - lb.horizontal_cm).abs() < 2.0 && (la.vertical_cm - lb.vertical_cm).abs() < 5.0);
+    let (ra, rb) = (a.origin.multipliers.rwl_kg, b.origin.multipliers.rwl_kg);
+    assert!((ra - rb).abs() < 0.05 * ra, "RWL {ra} vs {rb} kg");
     // H and V of the origin from the hand and ankle frames, computed here.
     let mut data = Data::new(&stoop.model);
     kinematics::placements(&stoop.model, &mut data, &stoop.record.samples[0].q);
@@ -228,7 +233,9 @@ fn run(args: &[&str]) -> (i32, String) {
 
 /// `lift_squat.toml` with `edit` applied to its text, written to a temporary file.
 fn edited(name: &str, edit: impl Fn(String) -> String) -> std::path::PathBuf {
-    let text = edit(std::fs::read_to_string(example("lift_squat")).unwrap());
+    let original = std::fs::read_to_string(example("lift_squat")).unwrap();
+    let text = edit(original.clone());
+    assert_ne!(text, original, "{name}: the edit must change the example");
     let dir = std::env::temp_dir().join(format!("mintorque-ergonomics-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join(name);
@@ -276,7 +283,7 @@ fn bad_ergonomic_input_is_refused_naming_the_file_and_field() {
         }
     }
     // A lift that starts with the hands behind the ankles (A = 180°) is not one the equation covers.
-    let behind = edited("behind.toml", |t| t.replace("shoulder = 75.0", "shoulder = 0.0"));
+    let behind = edited("behind.toml", |t| t.replace("shoulder = 80.0", "shoulder = 0.0"));
     let (code, stderr) = run(&["plan", behind.to_str().unwrap(), "--out", out.to_str().unwrap(), "-q"]);
     assert_eq!(code, 1, "{stderr}");
     assert!(stderr.contains("ergonomics.lift") && stderr.contains("A = 180.0°"), "{stderr}");
