@@ -166,7 +166,7 @@ fn time_above_the_limit_of_a_sine_torque_matches_the_analytic_crossings() {
     assert_eq!(e.joints[0].strength_source, Some("override"));
     assert_close(e.joints[0].time_above_limit_s, 2.0 * (0.5 - 2.0 * s), 2e-5, "time above the override");
     let table = text_table(&e);
-    assert!(table.contains("elbow above its strength:"), "{table}");
+    assert!(table.contains("elbow beyond its limit:"), "{table}");
 }
 
 #[test]
@@ -610,4 +610,22 @@ fn records_that_do_not_fit_the_model_are_refused() {
     rec.samples.clear();
     let err = export(&model, &rec, Format::Gltf).unwrap_err().to_string();
     assert!(err.contains("no samples"), "{err}");
+}
+
+#[test]
+fn a_joint_with_direction_limits_is_measured_against_the_limit_of_each_direction() {
+    // τ = 10 sin(2πt): against +8 N·m flexing and 4 N·m extending, the share peaks at 10/4 (extension), and
+    // the time beyond is the time above +8 plus the time below −4 (each half-wave's crossings, exact).
+    let mut model = one_joint(6.0);
+    let rec = record(&model, &grid(1.0, 1000), |_, t| [0.1 * t, 0.1, 0.0, 10.0 * (2.0 * PI * t).sin()]);
+    model.joints[1].limits.effort_positive = Some(8.0);
+    model.joints[1].limits.effort_negative = Some(4.0);
+    let e = ergonomics(&model, &rec, &BTreeMap::new()).unwrap();
+    let j = &e.joints[0];
+    assert_eq!((j.strength_limit_positive, j.strength_limit_negative), (Some(8.0), Some(4.0)));
+    assert_close(j.peak_fraction_of_limit.unwrap(), 10.0 / 4.0, 1e-3, "share of the extension limit");
+    let beyond = |r: f64| 0.5 - 2.0 * r.asin() / (2.0 * PI);
+    assert_close(j.time_above_limit_s, beyond(0.8) + beyond(0.4), 2e-5, "time beyond either limit");
+    let table = text_table(&e);
+    assert!(table.contains("−4.0/+8.0 N·m"), "{table}");
 }

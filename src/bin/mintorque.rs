@@ -225,7 +225,12 @@ fn run_plan(
     let (summary, ergonomics) = (contents.summary.as_ref().context("a planned task has a summary")?, &contents.ergonomics);
     if !quiet {
         print!("{}", report::summary::text_table(summary));
-        ergonomics.iter().for_each(|e| print!("{}", report::ergonomics::text_table(e)));
+        // One torque table: the ergonomic one (peaks, limits, time beyond them, work, power) where there is
+        // one, else the summary's peaks and limits.
+        match ergonomics {
+            Some(e) => print!("{}", report::ergonomics::text_table(e)),
+            None => print!("{}", report::summary::joint_table(summary)),
+        }
         println!("results in {}", out.display());
     }
     // The worst constraint at the nodes, in units, when it is violated there (the between-node misses are

@@ -53,6 +53,9 @@ pub struct Setup {
     pub strength: Vec<strength::Source>,
     /// `σ/T` at constant joints.
     pub population_cv: f64,
+    /// Whether the strength model (shares of strength, the population capable) applies: to a person — a
+    /// built-in human, or a figure whose task gives `[ergonomics.strength]` — not to a robot.
+    pub population: bool,
 }
 
 impl Setup {
@@ -75,7 +78,8 @@ impl Setup {
         }
         let lift = e.lift.as_ref().map(|l| niosh::resolve(l, file, model, &spec.gravity, origin)).transpose()?;
         let strength = strength::resolve(file, model, origin)?;
-        Ok(Setup { lumbar, lift, strength, population_cv })
+        let population = file.model.human.is_some() || !e.strength.is_empty();
+        Ok(Setup { lumbar, lift, strength, population_cv, population })
     }
 
     /// Refuses, before planning, a lift the equation does not cover: from the start and goal postures,
@@ -105,7 +109,7 @@ impl Ergonomics {
         if let (Some(lift), Some(first), Some(last)) = (&setup.lift, record.samples.first(), record.samples.last()) {
             self.lifting_equation = Some(niosh::assess(model, lift, (first.t, &first.q), (last.t, &last.q), origin)?);
         }
-        self.strength_model = Some(strength::assess(model, record, &setup.strength, setup.population_cv));
+        self.strength_model = setup.population.then(|| strength::assess(model, record, &setup.strength, setup.population_cv));
         Ok(())
     }
 }
@@ -134,15 +138,21 @@ pub struct JointErgonomics {
     pub peak_time_s: f64,
     /// Every joint's position at the peak: degrees for revolutes, metres for prismatic joints.
     pub posture_at_peak: BTreeMap<String, f64>,
-    /// The strength limit compared against (same unit as the torque); `None` when the joint has none.
+    /// The strength limit in the direction of the peak torque (same unit as the torque); `None` when the
+    /// joint has none.
     pub strength_limit: Option<f64>,
+    /// The strength limit along `+axis` (a flexor and its extensor differ).
+    pub strength_limit_positive: Option<f64>,
+    /// The strength limit along `−axis`, a magnitude.
+    pub strength_limit_negative: Option<f64>,
     /// Where the limit comes from: "override" or "model effort limit".
     pub strength_source: Option<&'static str>,
-    /// Peak |τ| over the limit (1 = at the limit).
+    /// The largest share of the limit of its direction over the motion, `max(τ/τ⁺, −τ/τ⁻)` (1 = at the
+    /// limit).
     pub peak_fraction_of_limit: Option<f64>,
-    /// Total time with |τ| above the limit (s).
+    /// Total time with τ beyond the limit of its direction (s).
     pub time_above_limit_s: f64,
-    /// The intervals `[start, end]` (s) with |τ| above the limit, in time order.
+    /// The intervals `[start, end]` (s) with τ beyond the limit of its direction, in time order.
     pub intervals_above_limit: Vec<[f64; 2]>,
     /// `∫ |τ q̇| dt` (J).
     pub absolute_work_j: f64,
@@ -206,15 +216,24 @@ pub(crate) fn position_factor(kind: JointKind) -> f64 {
 fn joint_ergonomics(model: &Model, samples: &[SampleRecord], i: usize, overrides: &BTreeMap<String, f64>) -> JointErgonomics {
     let joint = &model.joints[i + 1];
     let (peak_index, peak_abs_torque) = peak_by(samples, |s| s.tau[i].abs());
-    let (strength_limit, strength_source) = match overrides.get(&joint.name) {
-        Some(&l) => (Some(l), Some("override")),
-        None if joint.limits.effort.is_finite() => (Some(joint.limits.effort), Some("model effort limit")),
-        None => (None, None),
+    let finite = |l: f64| l.is_finite().then_some(l);
+    let (limits, strength_source) = match overrides.get(&joint.name) {
+        Some(&l) => ((Some(l), Some(l)), Some("override")),
+        None if joint.limits.effort_toward(true).is_finite() || joint.limits.effort_toward(false).is_finite() => {
+            ((finite(joint.limits.effort_toward(true)), finite(joint.limits.effort_toward(false))), Some("model effort limit"))
+        }
+        None => ((None, None), None),
     };
     let times: Vec<f64> = samples.iter().map(|s| s.t).collect();
     let torque: Vec<f64> = samples.iter().map(|s| s.tau[i]).collect();
     let power: Vec<f64> = samples.iter().map(|s| s.tau[i] * s.qd[i]).collect();
-    let intervals = strength_limit.map(|l| intervals_above(&times, &torque, l)).unwrap_or_default();
+    let (upper, lower) = (limits.0.unwrap_or(f64::INFINITY), limits.1.unwrap_or(f64::INFINITY));
+    let intervals = if strength_source.is_some() { intervals_outside(&times, &torque, upper, lower) } else { vec![] };
+    // share of the limit of the torque's direction: τ/τ⁺ or −τ/τ⁻
+    let share = |t: f64| if t >= 0.0 { t / upper } else { -t / lower };
+    let peak_share = strength_source.map(|_| torque.iter().map(|&t| share(t)).fold(0.0, f64::max));
+    let peak_tau = peak_index.map_or(0.0, |k| samples[k].tau[i]);
+    let strength_limit = if peak_tau >= 0.0 { limits.0 } else { limits.1 };
     let (power_index, peak_power_w) = peak_by(samples, |s| (s.tau[i] * s.qd[i]).abs());
     JointErgonomics {
         name: joint.name.clone(),
@@ -223,8 +242,10 @@ fn joint_ergonomics(model: &Model, samples: &[SampleRecord], i: usize, overrides
         peak_time_s: peak_index.map_or(0.0, |k| samples[k].t),
         posture_at_peak: peak_index.map(|k| posture(model, &samples[k])).unwrap_or_default(),
         strength_limit,
+        strength_limit_positive: limits.0,
+        strength_limit_negative: limits.1,
         strength_source,
-        peak_fraction_of_limit: strength_limit.map(|l| peak_abs_torque / l),
+        peak_fraction_of_limit: peak_share,
         // A fold from +0: an empty `sum` of floats is −0, which would print as "-0.000".
         time_above_limit_s: intervals.iter().map(|[a, b]| b - a).fold(0.0, |a, b| a + b),
         intervals_above_limit: intervals,
@@ -254,12 +275,18 @@ fn posture(model: &Model, sample: &SampleRecord) -> BTreeMap<String, f64> {
 /// The time intervals where the piecewise-linear `values` exceed `limit` in magnitude, with crossing
 /// times interpolated linearly; touching pieces are merged.
 pub fn intervals_above(times: &[f64], values: &[f64], limit: f64) -> Vec<[f64; 2]> {
+    intervals_outside(times, values, limit, limit)
+}
+
+/// The time intervals where the piecewise-linear `values` are above `upper` or below `−lower`, as
+/// [`intervals_above`]; pieces of zero length (a sample touching the limit) are left out.
+pub fn intervals_outside(times: &[f64], values: &[f64], upper: f64, lower: f64) -> Vec<[f64; 2]> {
     let mut intervals: Vec<[f64; 2]> = Vec::new();
     for k in 1..times.len().min(values.len()) {
         let (t0, t1, v0, v1) = (times[k - 1], times[k], values[k - 1], values[k]);
         // On one segment the line can be above +limit on one side and below −limit on the other:
         // the two pieces come in time order when the one nearer the start is pushed first.
-        let mut pieces = [segment_above(t0, t1, v0, v1, limit), segment_above(t0, t1, -v0, -v1, limit)];
+        let mut pieces = [segment_above(t0, t1, v0, v1, upper), segment_above(t0, t1, -v0, -v1, lower)];
         pieces.sort_by(|a, b| a.map(|p| p[0]).unwrap_or(f64::INFINITY).total_cmp(&b.map(|p| p[0]).unwrap_or(f64::INFINITY)));
         for [a, b] in pieces.into_iter().flatten() {
             match intervals.last_mut() {
@@ -268,6 +295,7 @@ pub fn intervals_above(times: &[f64], values: &[f64], limit: f64) -> Vec<[f64; 2
             }
         }
     }
+    intervals.retain(|[a, b]| b > a);
     intervals
 }
 
@@ -317,16 +345,21 @@ pub fn text_table(e: &Ergonomics) -> String {
     let width = e.joints.iter().map(|j| j.name.chars().count()).max().unwrap_or(5).max(5);
     let _ = writeln!(
         out,
-        "{:width$}  {:>10}  {:>7}  {:>8}  {:>7}  {:>9}  {:>9}  {:>10}",
-        "joint", "peak |τ|", "at (s)", "strength", "% str.", "above (s)", "work (J)", "peak P (W)"
+        "{:width$}  {:>14}  {:>7}  {:>18}  {:>10}  {:>9}  {:>9}  {:>10}",
+        "joint", "peak |τ|", "at (s)", "limit", "% of limit", "above (s)", "work (J)", "peak P (W)"
     );
     for j in &e.joints {
-        let limit = j.strength_limit.map_or_else(|| "-".to_string(), |l| format!("{l:.1}"));
+        let unit = j.torque_unit;
+        let limit = match (j.strength_limit_negative, j.strength_limit_positive) {
+            (Some(n), Some(p)) if n != p => format!("−{n:.1}/+{p:.1} {unit}"),
+            (n, p) => p.or(n).map_or_else(|| "-".to_string(), |l| format!("{l:.1} {unit}")),
+        };
         let percent = j.peak_fraction_of_limit.map_or_else(|| "-".to_string(), |f| format!("{:.0}%", f * 100.0));
+        let peak = format!("{:.2} {unit}", j.peak_abs_torque);
         let _ = writeln!(
             out,
-            "{:width$}  {:>10.2}  {:>7.3}  {:>8}  {:>7}  {:>9.3}  {:>9.2}  {:>10.2}",
-            j.name, j.peak_abs_torque, j.peak_time_s, limit, percent, j.time_above_limit_s, j.absolute_work_j, j.peak_power_w
+            "{:width$}  {:>14}  {:>7.3}  {:>18}  {:>10}  {:>9.3}  {:>9.2}  {:>10.2}",
+            j.name, peak, j.peak_time_s, limit, percent, j.time_above_limit_s, j.absolute_work_j, j.peak_power_w
         );
     }
     let _ = write!(out, "mechanical work: {:.2} J positive, {:.2} J absolute", e.total_positive_work_j, e.total_absolute_work_j);
@@ -336,7 +369,7 @@ pub fn text_table(e: &Ergonomics) -> String {
     out.push('\n');
     for j in e.joints.iter().filter(|j| !j.intervals_above_limit.is_empty()) {
         let spans: Vec<String> = j.intervals_above_limit.iter().map(|[a, b]| format!("{a:.3}–{b:.3} s")).collect();
-        let _ = writeln!(out, "{} above its strength: {}", j.name, spans.join(", "));
+        let _ = writeln!(out, "{} beyond its limit: {}", j.name, spans.join(", "));
     }
     measures_text(e, &mut out);
     out

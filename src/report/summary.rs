@@ -282,15 +282,6 @@ pub fn text_table(s: &Summary) -> String {
             .collect();
         let _ = writeln!(out, "{} starts, kept #{}: {}", s.starts.len(), s.best_start, each.join("; "));
     }
-    let width = s.joints.iter().map(|j| j.name.len()).max().unwrap_or(5).max(5);
-    let _ = writeln!(out, "{:width$}  {:>12}  {:>8}  {:>10}", "joint", "peak |τ|", "at (s)", "limit");
-    for j in &s.joints {
-        let limit = match (j.torque_limit_negative, j.torque_limit_positive) {
-            (Some(n), Some(p)) if n != p => format!("−{n:.1}/+{p:.1}"),
-            (n, p) => j.torque_limit.or(n).or(p).map(|l| format!("{l:.1}")).unwrap_or_else(|| "-".into()),
-        };
-        let _ = writeln!(out, "{:width$}  {:>12.3}  {:>8.3}  {:>10}", j.name, j.peak_abs_torque, j.peak_time_s, limit);
-    }
     for c in &s.contacts {
         let _ = writeln!(
             out,
@@ -319,6 +310,23 @@ pub fn text_table(s: &Summary) -> String {
         for v in &b.violations {
             let _ = writeln!(out, "  {v}");
         }
+    }
+    out
+}
+
+/// Peak |τ| per joint with its limit, for a plan without an ergonomic table (which has these columns
+/// too, [`crate::report::ergonomics::text_table`]).
+pub fn joint_table(s: &Summary) -> String {
+    use std::fmt::Write as _;
+    let mut out = String::new();
+    let width = s.joints.iter().map(|j| j.name.len()).max().unwrap_or(5).max(5);
+    let _ = writeln!(out, "{:width$}  {:>20}  {:>8}  {:>10}", "joint", "peak |τ| (N·m or N)", "at (s)", "limit");
+    for j in &s.joints {
+        let limit = match (j.torque_limit_negative, j.torque_limit_positive) {
+            (Some(n), Some(p)) if n != p => format!("−{n:.1}/+{p:.1}"),
+            (n, p) => j.torque_limit.or(n).or(p).map(|l| format!("{l:.1}")).unwrap_or_else(|| "-".into()),
+        };
+        let _ = writeln!(out, "{:width$}  {:>20.3}  {:>8.3}  {:>10}", j.name, j.peak_abs_torque, j.peak_time_s, limit);
     }
     out
 }
