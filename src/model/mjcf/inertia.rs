@@ -46,7 +46,7 @@ impl Cx<'_, '_> {
         if mass.is_nan() {
             return Err(self.err(node, &e.what, "has no mass attribute".into()));
         }
-        ranges::MASS.check(mass).map_err(|m| self.err_attr(&e, "mass", format!("{m} kg")))?;
+        ranges::MASS.check(mass).map_err(|m| self.err_attr(&e, "mass", m))?;
         // I = diag(ixx, iyy, izz), or the symmetric matrix of fullinertia="ixx iyy izz ixy ixz iyz", in
         // the inertial frame; then R I Rᵀ about the centre of mass at pos.
         let local = match (self.numbers(&e, "diaginertia", 3..=3)?, self.numbers(&e, "fullinertia", 6..=6)?) {

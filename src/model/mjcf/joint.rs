@@ -150,13 +150,15 @@ impl Cx<'_, '_> {
         let r = self.numbers(e, range, 2..=2)?;
         let on = match (flag, &r) {
             ("true", None) => return Err(self.err_attr(e, limited, format!("is true but no {range} is given"))),
-            ("auto", Some(_)) if !self.compiler.autolimits => return Err(self.err_attr(
-                e,
-                range,
-                format!(
+            ("auto", Some(_)) if !self.compiler.autolimits => {
+                return Err(self.err_attr(
+                    e,
+                    range,
+                    format!(
                     "is given with {limited}=\"auto\" and <compiler autolimits=\"false\">: say {limited}=\"true\" or \"false\""
                 ),
-            )),
+                ))
+            }
             ("false", _) | (_, None) => false,
             _ => true,
         };
