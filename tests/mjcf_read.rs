@@ -76,3 +76,16 @@ fn load_any_tells_mjcf_from_urdf_by_the_root_element() {
     assert_eq!(load_any(&urdf).unwrap().nv(), 1);
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn geoms_are_drawn() {
+    use mintorque::model::Shape;
+    let model = humanoid().model;
+    let forearm = &model.bodies[model.body_index("forearm_r").unwrap()];
+    // Its own cylinder, and the sphere of the hand welded to it.
+    assert!(matches!(forearm.shapes.as_slice(), [Shape::Cylinder { radius, .. }, Shape::Sphere { .. }] if *radius == 0.03));
+    let Shape::Capsule { a, b, .. } = model.bodies[model.body_index("thigh_r").unwrap()].shapes[0] else { panic!("a capsule") };
+    // fromto="0 0 0 0 0.01 -0.4", the body frame 0.02 m below the ball joint's frame.
+    assert!((a - mintorque::spatial::Vec3::new(0.0, 0.0, -0.02)).norm() < 1e-12, "{a:?}");
+    assert!((b - mintorque::spatial::Vec3::new(0.0, 0.01, -0.42)).norm() < 1e-12, "{b:?}");
+}

@@ -102,16 +102,21 @@ impl Cx<'_, '_> {
             ids.joint += 1;
         }
         // A body welded to the world never moves: its mass plays no part, and is not read.
+        // Inertia and shapes are written in the body frame; a chain puts them in the last joint's frame.
         let inertia = if joints.is_empty() && parent.body == 0 { Inertia::ZERO } else { self.body_inertia(node, class, &what)? };
         let here = if joints.is_empty() {
             // Welded: mass merged into the parent, the body a frame of it.
             let merged = model.bodies[parent.body].inertia.merged(&inertia.transformed(&frame));
             model.bodies[parent.body].inertia = merged;
+            let shapes = self.body_shapes(node, class, &what, &frame)?;
+            model.bodies[parent.body].shapes.extend(shapes);
             model.frames.push(Frame { name, body: parent.body, placement: frame });
             lines.frame.push(self.line(node));
             Place { body: parent.body, frame }
         } else {
-            self.chain(node, &what, &joints, parent.body, frame, name, inertia, model, lines)?
+            let place = self.chain(node, &what, &joints, parent.body, frame, name, inertia, model, lines)?;
+            model.bodies[place.body].shapes = self.body_shapes(node, class, &what, &place.frame)?;
+            place
         };
         self.sites(node, class, here, model, lines)?;
         for b in node.children().filter(|c| c.is_element() && c.tag_name().name() == "body") {

@@ -9,9 +9,9 @@ use roxmltree::Node;
 use std::f64::consts::PI;
 
 /// MuJoCo's geom types that have a volume we compute.
-const SOLIDS: &[&str] = &["sphere", "capsule", "ellipsoid", "cylinder", "box"];
+pub(super) const SOLIDS: &[&str] = &["sphere", "capsule", "ellipsoid", "cylinder", "box"];
 /// Every geom type.
-const TYPES: &[&str] = &["plane", "hfield", "sphere", "capsule", "ellipsoid", "cylinder", "box", "mesh", "sdf"];
+pub(super) const TYPES: &[&str] = &["plane", "hfield", "sphere", "capsule", "ellipsoid", "cylinder", "box", "mesh", "sdf"];
 
 impl Cx<'_, '_> {
     /// The mass properties of body `node` in its own frame (kg, m, kg·m²); `class` is its childclass.
@@ -104,7 +104,7 @@ impl Cx<'_, '_> {
 
     /// The geom's frame in the body and its full `size` (half extents, m): `fromto` sets the frame and the
     /// half length (size[1] of a capsule or cylinder; size[2] of a box or ellipsoid, whose size[1] is then size[0]).
-    fn geom_size(&self, e: &El, kind: &str) -> Result<(Transform, Vec3)> {
+    pub(super) fn geom_size(&self, e: &El, kind: &str) -> Result<(Transform, Vec3)> {
         let fromto = self.fromto(e)?;
         let needed = match (kind, fromto.is_some()) {
             ("sphere", _) | ("capsule" | "cylinder" | "box" | "ellipsoid", true) => 1,

@@ -11,7 +11,7 @@
 //!   axes followed by the three revolutes of a ball. Several joints in one body compose in order, each
 //!   about its own anchor `pos`, as MuJoCo composes them.
 //! - Inertia from `<inertial>` or, by MuJoCo's rules, from the body's geoms ([`inertia`]).
-//! - `<site>` → frames; `<motor joint gear ctrlrange>` → effort limits; `<option gravity>` → gravity.
+//! - Geoms → drawing shapes ([`shapes`]); `<site>` → frames; `<motor joint gear ctrlrange>` → effort limits; `<option gravity>` → gravity.
 //!
 //! SI inside: lengths m, masses kg, angles rad (converted from degrees once, here).
 
@@ -30,6 +30,7 @@ mod inertia;
 pub mod joint;
 mod schema;
 mod settings;
+mod shapes;
 
 /// A model read from MJCF, with what was dropped on the way.
 #[derive(Clone, Debug)]
