@@ -38,11 +38,11 @@ fn an_unknown_class_is_named_with_the_nearest() {
 
 #[test]
 fn masses_and_inertias_must_be_physical() {
-    let m = error("", r#"<body name="b"><joint/><inertial mass="-1" diaginertia="1 1 1"/></body>"#);
+    let m = error("", r#"<body name="b"><joint/><inertial pos="0 0 0" mass="-1" diaginertia="1 1 1"/></body>"#);
     assert_mentions(&m, &["bad.xml:4", "body \"b\" <inertial>", "mass", "-1"]);
-    let m = error("", r#"<body name="b"><joint/><inertial mass="1" diaginertia="0.1 0.1 -0.1"/></body>"#);
+    let m = error("", r#"<body name="b"><joint/><inertial pos="0 0 0" mass="1" diaginertia="0.1 0.1 -0.1"/></body>"#);
     assert_mentions(&m, &["<inertial>", "diaginertia"]);
-    let m = error("", r#"<body name="b"><joint/><inertial mass="1" diaginertia="0.1 0.1 0.5"/></body>"#);
+    let m = error("", r#"<body name="b"><joint/><inertial pos="0 0 0" mass="1" diaginertia="0.1 0.1 0.5"/></body>"#);
     assert_mentions(&m, &["<inertial>", "diaginertia"]);
     let m = error("", r#"<body name="b"><joint/><geom type="box" size="0.1 0 0.1"/></body>"#);
     assert_mentions(&m, &["body \"b\" <geom>", "size", "> 0"]);
@@ -56,7 +56,7 @@ fn a_mesh_whose_inertia_is_needed_is_refused() {
     assert_mentions(&m, &["bad.xml:4", "body \"b\" <geom \"shell\">", "mesh geom is not computed", "<inertial>"]);
     // Welded to the world, or with an <inertial>, its inertia is not needed.
     let ok = "<mujoco><worldbody><geom type=\"mesh\" mesh=\"m\"/><body><geom type=\"mesh\" mesh=\"m\"/></body>\
-              <body><joint/><inertial mass=\"1\" diaginertia=\"1 1 1\"/><geom type=\"mesh\" mesh=\"m\"/></body></worldbody></mujoco>";
+              <body><joint/><inertial pos=\"0 0 0\" mass=\"1\" diaginertia=\"1 1 1\"/><geom type=\"mesh\" mesh=\"m\"/></body></worldbody></mujoco>";
     assert_eq!(mjcf::parse(ok, "ok.xml").unwrap_or_else(|e| panic!("{e}")).model.nv(), 1);
 }
 
@@ -116,4 +116,12 @@ fn no_input_panics() {
     for (from, to) in [("0.", "-0."), ("1", "1e999"), ("\"0 ", "\" "), ("size=\"", "size=\"0 "), ("euler", "quat")] {
         let _ = mjcf::parse(&text.replace(from, to), "corrupt.xml");
     }
+}
+
+#[test]
+fn an_inertial_needs_its_position_and_mass() {
+    let m = error("", r#"<body name="b"><joint/><inertial mass="1" diaginertia="1 1 1"/></body>"#);
+    assert_mentions(&m, &["bad.xml:4", "body \"b\" <inertial>", "no pos"]);
+    let m = error("", r#"<body name="b"><joint/><inertial pos="0 0 0" diaginertia="1 1 1"/></body>"#);
+    assert_mentions(&m, &["<inertial>", "no mass"]);
 }

@@ -14,12 +14,14 @@ pub(super) struct Lines {
     body: Vec<u32>,
     joint: Vec<u32>,
     frame: Vec<u32>,
+    /// The frames that are sites (MuJoCo names sites apart from bodies; we do not).
+    sites: Vec<usize>,
 }
 
 impl Lines {
     /// The lines of a model with just its root, declared on `line`.
     pub fn new(line: u32) -> Self {
-        Lines { body: vec![line], joint: vec![line], frame: vec![line] }
+        Lines { body: vec![line], joint: vec![line], frame: vec![line], sites: vec![] }
     }
 
     pub fn of(&self, culprit: Culprit) -> Option<u32> {
@@ -58,6 +60,23 @@ impl Cx<'_, '_> {
             }
         }
         Ok(())
+    }
+
+    /// Renames a site called like a body (MuJoCo keeps the two apart, our frames share one namespace)
+    /// `{name}_site`, with a warning.
+    pub(super) fn rename_clashing_sites(&self, model: &mut Model, lines: &Lines) {
+        let not_sites: std::collections::HashSet<String> =
+            (0..model.frames.len()).filter(|i| !lines.sites.contains(i)).map(|i| model.frames[i].name.clone()).collect();
+        for &i in &lines.sites {
+            let name = model.frames[i].name.clone();
+            if not_sites.contains(&name) {
+                model.frames[i].name = format!("{name}_site");
+                let at = format!("{}:{}", self.origin, lines.frame[i]);
+                self.warnings
+                    .borrow_mut()
+                    .push(format!("{at}: <site \"{name}\">: named like a body: its frame is \"{name}_site\""));
+            }
+        }
     }
 
     /// Refuses the children we cannot model and unknown ones.
@@ -194,6 +213,7 @@ impl Cx<'_, '_> {
                 Some((frame, _)) => frame,
                 None => self.placement(&e)?,
             };
+            lines.sites.push(model.frames.len());
             model.frames.push(Frame { name: name.to_string(), body: place.body, placement: place.frame.compose(&local) });
             lines.frame.push(self.line(s));
         }

@@ -41,6 +41,9 @@ impl Cx<'_, '_> {
     /// `<inertial pos orientation mass diaginertia|fullinertia>` in the body frame.
     fn inertial(&self, node: Node, what: &str) -> Result<Inertia> {
         let e = self.el(node, "", format!("{what} <inertial>"))?;
+        if node.attribute("pos").is_none() {
+            return Err(self.err(node, &e.what, "has no pos attribute (MuJoCo requires it)".into()));
+        }
         let frame = self.placement(&e)?;
         let mass = self.number(&e, "mass", f64::NAN)?;
         if mass.is_nan() {

@@ -81,6 +81,7 @@ pub fn parse(text: &str, origin: &str) -> Result<Import> {
     }
     let mut lines = body::Lines::new(cx.line(top));
     cx.worldbodies(&of("worldbody"), &mut model, &mut lines)?;
+    cx.rename_clashing_sites(&mut model, &lines);
     for a in of("actuator") {
         cx.actuators(a, &mut model)?;
     }

@@ -62,10 +62,13 @@ impl Cx<'_, '_> {
     }
 
     /// `<option gravity>` (m/s², world frame; MuJoCo's default `0 0 −9.81`), zero under
-    /// `<flag gravity="disable">`.
+    /// `<flag gravity="disable">`; a fluid (`density`, `viscosity`) is dropped with a warning.
     pub(super) fn read_gravity(&self, node: Node) -> Result<Vec3> {
         let e = self.el(node, "", "<option>".into())?;
         let mut g = self.vec3(&e, "gravity", Vec3::new(0.0, 0.0, -9.81))?;
+        if self.number(&e, "density", 0.0)? != 0.0 || self.number(&e, "viscosity", 0.0)? != 0.0 {
+            self.warn(node, "<option>", "fluid forces (density, viscosity: drag and buoyancy) are dropped");
+        }
         for flag in node.children().filter(|c| c.is_element() && c.tag_name().name() == "flag") {
             let f = self.el(flag, "", "<option> <flag>".into())?;
             if self.keyword(&f, "gravity", &["enable", "disable"], "enable")? == "disable" {
