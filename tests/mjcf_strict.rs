@@ -102,7 +102,7 @@ fn mujocos_own_test_model_is_refused_clearly() {
     let python = std::fs::read_dir(&lib).unwrap_or_else(|e| panic!("{}: {e}: run `bash scripts/test-deps.sh`", lib.display()));
     let dir = python.map(|e| e.unwrap().path()).find(|p| p.join("site-packages/mujoco").is_dir()).expect("mujoco installed");
     let path = dir.join("site-packages/mujoco/testdata/model.xml");
-    let m = mjcf::load(&path).err().expect("refused").to_string();
+    let m = mjcf::load(&path).expect_err("refused").to_string();
     assert_mentions(&m, &["model.xml:", "body \"head\"", "gravcomp", "not supported"]);
 }
 
@@ -124,4 +124,10 @@ fn an_inertial_needs_its_position_and_mass() {
     assert_mentions(&m, &["bad.xml:4", "body \"b\" <inertial>", "no pos"]);
     let m = error("", r#"<body name="b"><joint/><inertial pos="0 0 0" diaginertia="1 1 1"/></body>"#);
     assert_mentions(&m, &["<inertial>", "no mass"]);
+}
+
+#[test]
+fn the_world_has_no_joints() {
+    let m = error("", r#"<joint name="j"/>"#);
+    assert_mentions(&m, &["bad.xml:4", "<worldbody>", "cannot have a <joint>"]);
 }

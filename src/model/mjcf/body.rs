@@ -54,6 +54,9 @@ impl Cx<'_, '_> {
         let world = Place { body: 0, frame: Transform::IDENTITY };
         for w in worlds {
             self.check_children(*w, "<worldbody>")?;
+            if let Some(c) = w.children().find(|c| matches!(c.tag_name().name(), "joint" | "freejoint" | "inertial")) {
+                return Err(self.err(c, "<worldbody>", format!("the world cannot have a <{}>", c.tag_name().name())));
+            }
             self.sites(*w, MAIN, world, model, lines)?;
             for b in w.children().filter(|c| c.is_element() && c.tag_name().name() == "body") {
                 self.body(b, MAIN, world, model, lines, &mut ids)?;

@@ -82,7 +82,8 @@ impl Cx<'_, '_> {
         if self.number(&e, "frictionloss", 0.0)? != 0.0 {
             self.warn(node, &e.what, "frictionloss (dry friction) is dropped");
         }
-        let anchor = self.vec3(&e, "pos", Vec3::zeros())?;
+        // A free joint moves the body frame itself: it has no anchor.
+        let anchor = if kind == "free" { Vec3::zeros() } else { self.vec3(&e, "pos", Vec3::zeros())? };
         let axis = self.vec3(&e, "axis", Vec3::z())?;
         if axis.norm() < 1e-12 {
             return Err(self.err_attr(&e, "axis", "must not be zero".into()));

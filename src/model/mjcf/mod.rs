@@ -10,8 +10,8 @@
 //!   `{name}_x` (`R = Rz·Ry·Rx`, see [`joint`]); `free` into slides `{name}_tx/ty/tz` along the world
 //!   axes followed by the three revolutes of a ball. Several joints in one body compose in order, each
 //!   about its own anchor `pos`, as MuJoCo composes them.
-//! - Inertia from `<inertial>` or, by MuJoCo's rules, from the body's geoms ([`inertia`]).
-//! - Geoms → drawing shapes ([`shapes`]); `<site>` → frames; `<motor joint gear ctrlrange>` → effort limits; `<option gravity>` → gravity.
+//! - Inertia from `<inertial>` or, by MuJoCo's rules, from the body's geoms (`inertia.rs`).
+//! - Geoms → drawing shapes (`shapes.rs`); `<site>` → frames; `<motor joint gear ctrlrange>` → effort limits; `<option gravity>` → gravity.
 //!
 //! SI inside: lengths m, masses kg, angles rad (converted from degrees once, here).
 
