@@ -89,3 +89,14 @@ fn geoms_are_drawn() {
     assert!((a - mintorque::spatial::Vec3::new(0.0, 0.0, -0.02)).norm() < 1e-12, "{a:?}");
     assert!((b - mintorque::spatial::Vec3::new(0.0, 0.01, -0.42)).norm() < 1e-12, "{b:?}");
 }
+
+#[test]
+fn every_actuator_default_applies_to_motors() {
+    // MuJoCo keeps one actuator default per class: <general> and <position> set what a <motor> takes.
+    let text = r#"<mujoco><default><general ctrlrange="-2 2" gear="3"/><position kp="5" forcerange="-1.5 1"/></default>
+        <worldbody><body><joint name="j"/><geom size=".1"/></body></worldbody><actuator><motor joint="j"/></actuator></mujoco>"#;
+    let model = mjcf::parse(text, "m.xml").unwrap_or_else(|e| panic!("{e}")).model;
+    let limits = model.joints[1].limits;
+    // τ = gear·clamp(ctrl, force range) ∈ 3·[−1.5, 1].
+    assert_eq!((limits.effort_toward(true), limits.effort_toward(false)), (3.0, 4.5));
+}

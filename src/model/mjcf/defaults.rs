@@ -64,10 +64,17 @@ impl Cx<'_, '_> {
                 nested.push(child);
                 continue;
             }
-            let Some(known) = schema::attributes_of(tag) else { continue };
-            let values = own.entry(tag.to_string()).or_default();
+            let key = schema::default_key(tag);
+            // Actuators other than <motor> are not read: their attributes are kept unchecked.
+            let known = match schema::attributes_of(tag) {
+                Some(known) => Some(known),
+                None if key == "actuator" => None,
+                None => continue,
+            };
+            let values = own.entry(key.to_string()).or_default();
             for a in child.attributes() {
-                if !known.contains(&a.name()) || a.name() == "class" || a.name() == "name" {
+                if known.is_some_and(|k| !k.contains(&a.name())) || a.name() == "class" || a.name() == "name" {
+                    let known = known.unwrap_or_default();
                     let message = unknown_name("attribute", a.name(), known, |n| format!("{n}="));
                     return Err(self.err(child, &format!("{what} <{tag}>"), message));
                 }

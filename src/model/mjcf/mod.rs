@@ -63,7 +63,9 @@ pub fn parse(text: &str, origin: &str) -> Result<Import> {
             return Err(cx.err(child, &format!("<{tag}>"), why.to_string()));
         }
         if let Some((_, why)) = schema::DROPPED.iter().find(|(t, _)| *t == tag) {
-            cx.warn(child, &format!("<{tag}>"), why);
+            if child.children().any(|c| c.is_element()) {
+                cx.warn(child, &format!("<{tag}>"), why);
+            }
         } else if !schema::READ_TOP.contains(&tag) && !schema::IGNORED_TOP.contains(&tag) {
             let known: Vec<&str> = schema::READ_TOP.iter().chain(schema::IGNORED_TOP).copied().collect();
             return Err(cx.err(child, "<mujoco>", unknown_name("element", tag, &known, |n| format!("<{n}>"))));
@@ -166,7 +168,7 @@ impl<'a, 'i> Cx<'a, 'i> {
                 }
             }
         }
-        Ok(El { node, class: self.defaults.attrs(class, tag), what })
+        Ok(El { node, class: self.defaults.attrs(class, schema::default_key(tag)), what })
     }
 
     /// The text of attribute `attr` of `e` (its own, else its class's) and the line that set it.

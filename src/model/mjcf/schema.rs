@@ -191,6 +191,20 @@ pub(super) const MOTOR: &[&str] = &[
     "delay",
 ];
 
+/// MuJoCo's actuator elements: in a `<default>` they all set one shared actuator default.
+const ACTUATORS: &[&str] =
+    &["general", "motor", "position", "velocity", "intvelocity", "damper", "cylinder", "muscle", "adhesion"];
+
+/// Which default an element kind takes its class values from: its own tag, or `actuator` for every
+/// actuator (a `<general ctrlrange>` default applies to `<motor>`s, as in MuJoCo).
+pub(super) fn default_key(tag: &str) -> &str {
+    if ACTUATORS.contains(&tag) {
+        "actuator"
+    } else {
+        tag
+    }
+}
+
 /// The known attributes of an element we read (`None`: not one we check).
 pub(super) fn attributes_of(tag: &str) -> Option<&'static [&'static str]> {
     Some(match tag {
