@@ -6,3 +6,5 @@ set -euo pipefail
 python3 -m pip install --quiet --disable-pip-version-check --root-user-action=ignore 'bvh==0.3'
 # tests/sweep.rs reads the sweep's Parquet table back with pyarrow.
 python3 -m pip install --quiet --disable-pip-version-check --root-user-action=ignore 'pyarrow==21.0.0'
+# tests/mjcf.rs checks the MJCF reader against MuJoCo's own inverse dynamics (a venv, target/mujoco-venv).
+bash "$(dirname "$0")/mujoco-venv.sh"

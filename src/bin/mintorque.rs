@@ -96,7 +96,7 @@ enum Command {
     /// Write a figure — a built-in human or a model file — as URDF (for any URDF viewer) or as a figure
     /// file (TOML) to edit.
     Figure {
-        /// A URDF or figure file to convert.
+        /// A URDF, MJCF (MuJoCo) or figure file to convert.
         model: Option<PathBuf>,
         /// A built-in human structure instead: sagittal, free_arms, hanging, push_up.
         #[arg(long, conflicts_with = "model")]

@@ -13,17 +13,20 @@ pub mod collision;
 pub mod figure;
 pub mod human;
 pub mod lock;
+pub mod mjcf;
 pub mod toml_doc;
 pub mod urdf;
 pub mod urdf_export;
 pub mod validate;
+pub mod xml;
 
 use crate::error::{Error, Result};
 use crate::spatial::{Inertia, Transform, Vec3};
 use std::path::Path;
 
-/// Reads a model file of either format, chosen by extension: `.urdf` or `.xml` for URDF, `.toml` for a
-/// figure file (`docs/figure-file.md`).
+/// Reads a model file of any format, chosen by extension: `.urdf` for URDF, `.xml` for URDF or MuJoCo's
+/// MJCF (by the root element, `<robot>` or `<mujoco>`), `.toml` for a figure file (`docs/figure-file.md`).
+/// What an MJCF file has and the model does not is printed on stderr as warnings.
 pub fn load_any(path: &Path) -> Result<Model> {
     load_any_with(path, urdf::Options::default())
 }
@@ -32,17 +35,31 @@ pub fn load_any(path: &Path) -> Result<Model> {
 pub fn load_any_with(path: &Path, options: urdf::Options) -> Result<Model> {
     let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
     match ext.as_deref() {
+        Some("xml") if is_mjcf(path) => {
+            let import = mjcf::load(path)?;
+            for w in &import.warnings {
+                eprintln!("warning: {w}");
+            }
+            Ok(import.model)
+        }
         Some("urdf" | "xml") => urdf::load_with(path, options),
         Some("toml") => figure::load(path),
         other => Err(Error::model(
             path.display().to_string(),
             "file name",
             format!(
-                "cannot tell the model format from the extension {}: use .urdf or .xml for URDF, .toml for a figure file",
+                "cannot tell the model format from the extension {}: use .urdf or .xml for URDF, .xml for MJCF, .toml for a figure file",
                 other.map_or("(none)".to_string(), |e| format!(".{e}"))
             ),
         )),
     }
+}
+
+/// Whether the XML file at `path` is MJCF (root element `<mujoco>`); unreadable or malformed files are left
+/// to the URDF reader to report.
+fn is_mjcf(path: &Path) -> bool {
+    let Ok(text) = std::fs::read_to_string(path) else { return false };
+    roxmltree::Document::parse(&text).is_ok_and(|d| d.root_element().tag_name().name() == "mujoco")
 }
 
 /// The motion a joint allows.

@@ -13,6 +13,7 @@
 //! joints by name, so the order is ours to choose.
 
 use super::validate::{ranges, Culprit, Range};
+use super::xml::{line_of, parse_finite};
 use super::{Body, Frame, Joint, JointKind, JointLimits, Model, Passive, Shape};
 use crate::error::{Error, Result};
 use crate::spatial::{Inertia, Mat3, Transform, Vec3};
@@ -240,7 +241,7 @@ struct Cx<'a, 'i> {
 
 impl Cx<'_, '_> {
     fn line(&self, node: Node) -> u32 {
-        self.doc.text_pos_at(node.range().start).row
+        line_of(self.doc, node)
     }
 
     fn err(&self, node: Node, element: &str, message: String) -> Error {
@@ -475,8 +476,4 @@ impl Cx<'_, '_> {
         }
         Ok(passive)
     }
-}
-
-fn parse_finite(s: &str) -> Option<f64> {
-    s.trim().parse::<f64>().ok().filter(|x| x.is_finite())
 }
