@@ -30,6 +30,52 @@ pub(super) enum Dof {
     ToePivot,
     /// The hands rolling about the bar (hanging); + pitches the body forward.
     Grip,
+    // ---- the whole body's further DOFs (`whole_body.rs`) ----
+    /// Inversion + (the sole turns to face the other foot).
+    AnkleInversion,
+    /// Adduction + (the toes turn in, towards the other foot).
+    AnkleAdduction,
+    /// Abduction +.
+    HipAbduction,
+    /// Internal (medial) rotation +.
+    HipRotation,
+    /// Rotation about the humerus' long axis, internal +: the middle axis of the whole body's shoulder.
+    HumeralRotation,
+    /// Forearm pronation + from the palm-forward (supinated) anatomical position.
+    Pronation,
+    /// Radial deviation + (the hand swings towards the thumb).
+    WristDeviation,
+    /// L5/S1: forward bend +, lateral bend to the left +, axial rotation to the left + (face turns left).
+    LumbarFlexion,
+    LumbarLateral,
+    LumbarRotation,
+    /// Thoracic spine (T12/L1 level): as the lumbar joint.
+    ThoracicFlexion,
+    ThoracicLateral,
+    ThoracicRotation,
+    /// Neck (C7/T1): flexion + (chin down), lateral bend to the left +, rotation to the left +.
+    NeckFlexion,
+    NeckLateral,
+    NeckRotation,
+}
+
+impl Dof {
+    /// Whether the DOF is one of a left–right pair (so a lumped pair stands for two), not a midline joint.
+    pub(super) fn paired(self) -> bool {
+        !matches!(
+            self,
+            Dof::Lumbar
+                | Dof::LumbarFlexion
+                | Dof::LumbarLateral
+                | Dof::LumbarRotation
+                | Dof::ThoracicFlexion
+                | Dof::ThoracicLateral
+                | Dof::ThoracicRotation
+                | Dof::NeckFlexion
+                | Dof::NeckLateral
+                | Dof::NeckRotation
+        )
+    }
 }
 
 /// Per-side data of one DOF for the 81 kg reference adult.
@@ -75,6 +121,28 @@ pub(super) fn dof_data(dof: Dof) -> DofData {
         // Contacts, not muscles: small torque capacities (toe flexors, finger grip), no spring.
         Dof::ToePivot => (LEFT, 0.0, 95.0, 20.0, 0.0, 0.0),
         Dof::Grip => (LEFT, -225.0, 225.0, 15.0, 0.0, 0.0),
+        // The left sole turns to face right (its −z towards −y): about −x. Toes in (+x towards −y): about −z.
+        Dof::AnkleInversion => (-FORWARD, -20.0, 35.0, 50.0, 10.0, 0.3),
+        Dof::AnkleAdduction => (-UP, -25.0, 25.0, 30.0, 5.0, 0.2),
+        Dof::HipAbduction => (FORWARD, -30.0, 45.0, 150.0, 10.0, 1.0),
+        Dof::HipRotation => (-UP, -45.0, 45.0, 60.0, 5.0, 0.5),
+        // External rotation stops at 80°, 10° short of the shoulder's gimbal lock at ±90°.
+        Dof::HumeralRotation => (-UP, -80.0, 70.0, 50.0, 1.0, 0.1),
+        // The left palm turns from forward (+x) towards the body (−y): about −z.
+        Dof::Pronation => (-UP, -5.0, 160.0, 8.0, 0.5, 0.05),
+        // The left hand swings out to the thumb's side (−z towards +y): about +x.
+        Dof::WristDeviation => (FORWARD, -30.0, 20.0, 12.0, 1.0, 0.05),
+        // Spine and neck: forward bend about +y, lateral bend to the left (+z towards +y) about −x,
+        // rotation to the left (+x towards +y) about +z.
+        Dof::LumbarFlexion => (LEFT, -20.0, 60.0, 250.0, 30.0, 2.0),
+        Dof::LumbarLateral => (-FORWARD, -25.0, 25.0, 200.0, 30.0, 2.0),
+        Dof::LumbarRotation => (UP, -15.0, 15.0, 100.0, 30.0, 2.0),
+        Dof::ThoracicFlexion => (LEFT, -15.0, 35.0, 200.0, 30.0, 2.0),
+        Dof::ThoracicLateral => (-FORWARD, -20.0, 20.0, 150.0, 30.0, 2.0),
+        Dof::ThoracicRotation => (UP, -35.0, 35.0, 80.0, 10.0, 1.0),
+        Dof::NeckFlexion => (LEFT, -45.0, 45.0, 40.0, 3.0, 0.2),
+        Dof::NeckLateral => (-FORWARD, -45.0, 45.0, 35.0, 3.0, 0.2),
+        Dof::NeckRotation => (UP, -60.0, 60.0, 20.0, 1.0, 0.1),
     };
     DofData { axis, lower_deg, upper_deg, effort, stiffness, damping }
 }
@@ -109,7 +177,7 @@ impl Side {
 
     /// How many real joints a model joint of `dof` on this side stands for.
     pub(super) fn count(self, dof: Dof) -> f64 {
-        if self == Side::Both && dof != Dof::Lumbar {
+        if self == Side::Both && dof.paired() {
             2.0
         } else {
             1.0

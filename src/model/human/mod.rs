@@ -27,8 +27,10 @@ mod dofs;
 mod geometry;
 mod structures;
 mod table;
+mod whole_body;
 
 pub use table::*;
+pub use whole_body::POSTURES;
 
 // ---- Subject ----
 
@@ -101,11 +103,16 @@ pub enum Structure {
     /// Push-up chain rooted at the toes, cut at the wrist (section 7.3): toe pivot, ankle, knee, hip,
     /// lumbar, shoulder, elbow — 7 DOF; the planner closes the loop by holding frame `hands` on the floor.
     PushUp,
+    /// The whole body in 3D (`whole_body.rs`): separate left and right limbs, 3-DOF ankles, hips,
+    /// shoulders, lumbar (L5/S1), thoracic and neck joints, knees, elbows with pronation, 2-DOF wrists —
+    /// 37 DOF, rooted at the left foot (or, free-floating, at the pelvis: [`build_free`]).
+    WholeBody,
 }
 
 impl Structure {
     /// Every built-in structure, in the order `mintorque examples` lists them.
-    pub const ALL: [Structure; 4] = [Structure::Sagittal, Structure::FreeArms, Structure::Hanging, Structure::PushUp];
+    pub const ALL: [Structure; 5] =
+        [Structure::Sagittal, Structure::FreeArms, Structure::Hanging, Structure::PushUp, Structure::WholeBody];
 
     /// The structure's name as used in task files and on the command line.
     pub fn name(&self) -> &'static str {
@@ -114,11 +121,12 @@ impl Structure {
             Structure::FreeArms => "free_arms",
             Structure::Hanging => "hanging",
             Structure::PushUp => "push_up",
+            Structure::WholeBody => "whole_body",
         }
     }
 
     /// Every structure's name, in [`Structure::ALL`] order.
-    pub fn names() -> [&'static str; 4] {
+    pub fn names() -> [&'static str; 5] {
         Structure::ALL.map(|s| s.name())
     }
 
@@ -148,7 +156,7 @@ impl Structure {
             q[i] = value;
         };
         match self {
-            Structure::Sagittal | Structure::FreeArms => {}
+            Structure::Sagittal | Structure::FreeArms | Structure::WholeBody => {}
             Structure::Hanging => {
                 set("grip", PI);
                 set("shoulder", PI);
@@ -158,6 +166,32 @@ impl Structure {
                 set("toe_pivot", tilt);
                 // Shoulder flexion equal to the body's forward tilt keeps the arms vertical.
                 set("shoulder", tilt);
+            }
+        }
+        Ok(q)
+    }
+
+    /// A named posture (rad, in `model`'s `q` order, joints not in the model skipped — `model` may be this
+    /// structure with a free root, or with joints locked): `reference` ([`Structure::reference_pose`]) for
+    /// every structure, and for `whole_body` the postures [`POSTURES`] (`standing`, `stoop`, `squat`;
+    /// docs/human.md gives their angles). An unknown name is an error listing the known ones.
+    pub fn posture(&self, name: &str, params: HumanParams, model: &Model) -> Result<Vec<f64>> {
+        let mut q = vec![0.0; model.nv()];
+        let angles: Vec<(String, f64)> = match (self, name) {
+            (_, "reference") => {
+                let own = build(*self, params)?;
+                let reference = self.reference_pose(params)?;
+                own.joint_names().iter().zip(reference).map(|(n, v)| (n.to_string(), v.to_degrees())).collect()
+            }
+            (Structure::WholeBody, _) => whole_body::posture(name)?,
+            _ => {
+                let message = format!("the {self} structure has only the \"reference\" posture, not \"{name}\"");
+                return Err(Error::model(ORIGIN, "posture", message));
+            }
+        };
+        for (joint, degrees) in angles {
+            if let Some(i) = model.dof_index(&joint) {
+                q[i] = degrees.to_radians();
             }
         }
         Ok(q)
@@ -187,7 +221,25 @@ pub fn build(structure: Structure, params: HumanParams) -> Result<Model> {
         Structure::FreeArms => structures::free_arms(&g),
         Structure::Hanging => structures::hanging(&g),
         Structure::PushUp => structures::push_up(&g),
+        Structure::WholeBody => whole_body::whole_body(&g, whole_body::Root::LeftFoot),
     };
     model.validate(&format!("{ORIGIN} ({structure})"))?;
+    Ok(model)
+}
+
+/// The human in `structure` floating free: a 6-DOF unactuated root ([`crate::model::floating`]) moves the
+/// pelvis (`whole_body`) or the structure's own root body (the others). At `q = 0` the figure stands
+/// where [`build`]'s does.
+pub fn build_free(structure: Structure, params: HumanParams) -> Result<Model> {
+    params.validate()?;
+    let g = Geometry::new(params);
+    let model = match structure {
+        Structure::WholeBody => {
+            let pelvis = crate::spatial::Transform::from_translation(crate::spatial::Vec3::new(0.0, 0.0, g.z_hip));
+            whole_body::whole_body(&g, whole_body::Root::Pelvis).with_free_root(pelvis)
+        }
+        other => build(other, params)?.with_free_root(crate::spatial::Transform::IDENTITY),
+    };
+    model.validate(&format!("{ORIGIN} ({structure}, free-floating)"))?;
     Ok(model)
 }

@@ -1,0 +1,188 @@
+//! The whole-body human (`whole_body`, 37 DOF) and the free-floating figure: structure, singularity-free
+//! composite joints, reference postures; angular momentum conservation of a free-floating plan.
+
+use mintorque::dynamics::{kinematics, Data};
+use mintorque::model::human::{self, HumanParams, Structure};
+use mintorque::spatial::{Mat3, Vec3};
+use mintorque::Model;
+
+fn whole_body() -> Model {
+    human::build(Structure::WholeBody, HumanParams::default()).unwrap()
+}
+
+fn free_body() -> Model {
+    human::build_free(Structure::WholeBody, HumanParams::default()).unwrap()
+}
+
+/// `q` with the named joints set (degrees), the rest zero.
+fn pose(model: &Model, set: &[(&str, f64)]) -> Vec<f64> {
+    let mut q = vec![0.0; model.nv()];
+    for &(name, value) in set {
+        q[model.dof_index(name).unwrap_or_else(|| panic!("no joint {name}"))] = value.to_radians();
+    }
+    q
+}
+
+fn point(model: &Model, q: &[f64], frame: &str) -> Vec3 {
+    let mut data = Data::new(model);
+    kinematics::placements(model, &mut data, q);
+    kinematics::frame_placement(model, &data, model.frame_index(frame).unwrap_or_else(|| panic!("no frame {frame}"))).translation
+}
+
+fn com(model: &Model, q: &[f64]) -> Vec3 {
+    let mut data = Data::new(model);
+    kinematics::placements(model, &mut data, q);
+    kinematics::center_of_mass(model, &data, true).unwrap()
+}
+
+/// The DOF indices of each composite (multi-revolute) anatomical joint, by group name.
+fn composite_joints(model: &Model) -> Vec<(String, Vec<usize>)> {
+    let mut groups: Vec<(String, Vec<usize>)> = Vec::new();
+    for (i, j) in model.joints[1..].iter().enumerate() {
+        let Some(g) = &j.group else { continue };
+        match groups.iter_mut().find(|(name, _)| name == g) {
+            Some((_, dofs)) => dofs.push(i),
+            None => groups.push((g.clone(), vec![i])),
+        }
+    }
+    groups.retain(|(_, dofs)| dofs.len() > 1);
+    groups
+}
+
+/// The smallest singular value of the map from a composite joint's angle rates to its angular velocity
+/// (the columns: each revolute's world axis) over a grid of its whole range of motion, the other joints
+/// at 0; and where it is smallest (degrees).
+fn worst_conditioning(model: &Model, dofs: &[usize]) -> (f64, Vec<f64>) {
+    let steps: usize = 9;
+    let mut data = Data::new(model);
+    let mut worst = (f64::INFINITY, vec![]);
+    let n = dofs.len();
+    for k in 0..steps.pow(n as u32) {
+        let mut q = vec![0.0; model.nv()];
+        let mut at = Vec::new();
+        for (m, &i) in dofs.iter().enumerate() {
+            let step = (k / steps.pow(m as u32)) % steps;
+            let l = &model.joints[i + 1].limits;
+            q[i] = l.lower + (l.upper - l.lower) * step as f64 / (steps - 1) as f64;
+            at.push(q[i].to_degrees());
+        }
+        kinematics::placements(model, &mut data, &q);
+        let mut jac = Mat3::zeros();
+        for (m, &i) in dofs.iter().enumerate() {
+            jac.set_column(m, &data.S[i + 1].w);
+        }
+        let sigma = jac.svd(false, false).singular_values;
+        let smallest = sigma.iter().take(n).fold(f64::INFINITY, |a, &b| a.min(b));
+        if smallest < worst.0 {
+            worst = (smallest, at);
+        }
+    }
+    worst
+}
+
+#[test]
+fn whole_body_has_37_dofs_in_the_documented_joints_and_frames() {
+    let m = whole_body();
+    assert_eq!(m.nv(), 37, "{:?}", m.joint_names());
+    assert!((m.total_mass() - 81.0).abs() < 1e-9);
+    let groups: Vec<String> = composite_joints(&m).into_iter().map(|(g, d)| format!("{g}:{}", d.len())).collect();
+    for want in ["l_ankle:3", "l_hip:3", "r_hip:3", "r_ankle:3", "lumbar:3", "thoracic:3", "neck:3"] {
+        assert!(groups.contains(&want.to_string()), "{want} in {groups:?}");
+    }
+    for s in ["l_", "r_"] {
+        for g in ["shoulder:3", "elbow:2", "wrist:2"] {
+            assert!(groups.contains(&format!("{s}{g}")), "{s}{g} in {groups:?}");
+        }
+        assert!(m.dof_index(&format!("{s}knee")).is_some());
+    }
+    for f in
+        ["l_hand", "r_hand", "l_toe", "l_heel", "r_toe", "r_heel", "l_ankle", "r_ankle", "ankles", "l5_s1", "head_top", "chin"]
+    {
+        assert!(m.frame_index(f).is_some(), "frame {f}");
+    }
+    // Standing: the vertex at the stature, the L5/S1 point at the lumbar joint's height, the feet apart.
+    let q = vec![0.0; m.nv()];
+    assert!((point(&m, &q, "head_top").z - 1.83).abs() < 1e-9);
+    assert!((point(&m, &q, "l5_s1").z - 1.1578).abs() < 1e-3);
+    assert!((point(&m, &q, "l_toe").y - point(&m, &q, "r_toe").y - 0.2).abs() < 1e-9);
+}
+
+#[test]
+fn no_composite_joint_is_singular_inside_its_range_unlike_table_one_shoulder_order() {
+    let m = whole_body();
+    for (group, dofs) in composite_joints(&m) {
+        let (sigma, at) = worst_conditioning(&m, &dofs);
+        // Orthogonal axes: σ_min = √(1 − |sin β|), β the middle angle; the middle ranges end ≥ 10° short of
+        // 90° (the shoulder's humeral rotation at −80°: 0.123).
+        assert!(sigma > 0.12, "{group}: smallest singular value {sigma:.3} at {at:?}°");
+    }
+    // The opposite condition: free_arms' shoulder in Table I's printed order z·y·x is singular at 90°
+    // flexion, inside its range.
+    let arms = human::build(Structure::FreeArms, HumanParams::default()).unwrap();
+    let shoulder = composite_joints(&arms).into_iter().find(|(g, _)| g == "l_shoulder").unwrap().1;
+    let (sigma, at) = worst_conditioning(&arms, &shoulder);
+    assert!(sigma < 1e-6, "Table I's shoulder order: smallest singular value {sigma:.3e} at {at:?}°");
+}
+
+#[test]
+fn anatomical_angles_mean_the_same_rooted_at_the_foot_or_floating_free() {
+    let (fixed, free) = (whole_body(), free_body());
+    assert_eq!(free.nv(), fixed.nv() + 6);
+    let set = [
+        ("l_ankle_y", 10.0),
+        ("l_ankle_x", 8.0),
+        ("l_knee", 30.0),
+        ("l_hip_y", 25.0),
+        ("l_hip_z", -10.0),
+        ("r_hip_x", 15.0),
+        ("lumbar_y", 20.0),
+        ("lumbar_z", 10.0),
+        ("thoracic_x", 5.0),
+        ("l_shoulder_y", 120.0),
+        ("l_shoulder_z", 30.0),
+        ("r_elbow_y", 60.0),
+        ("r_elbow_z", 80.0),
+        ("r_wrist_x", 10.0),
+    ];
+    let (qa, qb) = (pose(&fixed, &set), pose(&free, &set));
+    // The same body shape: the same distances between frames, whichever body is the root.
+    let frames = ["l_hand", "r_hand", "l_toe", "r_heel", "head_top", "l5_s1"];
+    for a in frames {
+        for b in frames {
+            let da = (point(&fixed, &qa, a) - point(&fixed, &qa, b)).norm();
+            let db = (point(&free, &qb, a) - point(&free, &qb, b)).norm();
+            assert!((da - db).abs() < 1e-9, "{a}–{b}: {da} vs {db}");
+        }
+    }
+    // Signs: left shoulder flexion 90° puts the hand forward; hip flexion lifts the right knee forward.
+    let arm = pose(&fixed, &[("l_shoulder_y", 90.0)]);
+    assert!(point(&fixed, &arm, "l_hand").x > 0.6);
+    let hip = pose(&fixed, &[("r_hip_y", 60.0)]);
+    assert!(point(&fixed, &hip, "r_toe").x > 0.4);
+    // Mirror symmetry: the same abduction moves the hands apart, to opposite sides, by the same amount.
+    let abd = pose(&fixed, &[("l_shoulder_x", 40.0), ("r_shoulder_x", 40.0)]);
+    let (l, r) = (point(&fixed, &abd, "l_hand"), point(&fixed, &abd, "r_hand"));
+    assert!(l.y > 0.4 && (l.y + r.y).abs() < 1e-9 && (l.z - r.z).abs() < 1e-9, "{l} {r}");
+}
+
+#[test]
+fn reference_postures_keep_the_centre_of_mass_over_the_feet() {
+    let m = whole_body();
+    let p = HumanParams::default();
+    let toe = point(&m, &vec![0.0; m.nv()], "l_toe").x;
+    let heel = point(&m, &vec![0.0; m.nv()], "l_heel").x;
+    for name in human::POSTURES {
+        let q = Structure::WholeBody.posture(name, p, &m).unwrap();
+        let c = com(&m, &q);
+        let hand = point(&m, &q, "l_hand");
+        eprintln!("{name}: CoM x {:.3} z {:.3}, hand x {:.3} z {:.3}", c.x, c.z, hand.x, hand.z);
+        assert!(c.x > heel + 0.01 && c.x < toe - 0.03, "{name}: CoM x = {:.3} m outside the feet", c.x);
+        assert!(c.y.abs() < 1e-9, "{name}: symmetric");
+        for (i, j) in m.joints[1..].iter().enumerate() {
+            assert!(q[i] >= j.limits.lower && q[i] <= j.limits.upper, "{name}: {} out of range", j.name);
+        }
+    }
+    let hands = |name| point(&m, &Structure::WholeBody.posture(name, p, &m).unwrap(), "l_hand").z;
+    assert!(hands("stoop") < 0.6 && hands("squat") < 0.3, "stoop and squat reach low");
+    assert!(Structure::WholeBody.posture("kneel", p, &m).is_err());
+}
