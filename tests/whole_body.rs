@@ -186,3 +186,85 @@ fn reference_postures_keep_the_centre_of_mass_over_the_feet() {
     assert!(hands("stoop") < 0.6 && hands("squat") < 0.3, "stoop and squat reach low");
     assert!(Structure::WholeBody.posture("kneel", p, &m).is_err());
 }
+
+/// A left-arm raise in 1 s with gravity off ("space"), the hand to the point ahead at shoulder height; the
+/// whole body minus the joints the motion does not need (locked, for a fast test): 7 anatomical DOF.
+/// `root` is "free" (floating) or "fixed" (the left foot held).
+fn arm_raise_task(root: &str) -> mintorque::plan::task::Task {
+    let text = format!(
+        r#"
+[model]
+human = "whole_body"
+root = "{root}"
+lock = {{ l_hip_x = 0.0, l_hip_z = 0.0, l_knee = 0.0, l_ankle_z = 0.0, l_ankle_x = 0.0, l_ankle_y = 0.0, r_hip_x = 0.0, r_hip_z = 0.0, r_knee = 0.0, r_ankle_z = 0.0, r_ankle_x = 0.0, r_ankle_y = 0.0, lumbar_x = 0.0, lumbar_z = 0.0, thoracic_y = 0.0, thoracic_x = 0.0, thoracic_z = 0.0, neck_y = 0.0, neck_x = 0.0, neck_z = 0.0, l_shoulder_z = 0.0, l_elbow_z = 0.0, l_wrist_y = 0.0, l_wrist_x = 0.0, r_shoulder_z = 0.0, r_shoulder_x = 0.0, r_elbow_y = 0.0, r_elbow_z = 0.0, r_wrist_y = 0.0, r_wrist_x = 0.0 }}
+
+[motion]
+duration = 1.0
+start = {{}}
+
+[[motion.frame_goal]]
+frame = "l_hand"
+position = [0.68, 0.2, 1.50]
+tolerance_mm = 5
+
+[environment]
+gravity = "space"
+
+[objective]
+terms = {{ torque = 1.0, acceleration = 0.1 }}
+
+[discretization]
+control_points = 8
+
+[solver]
+max_iterations = 1500
+"#
+    );
+    mintorque::plan::task::Task::parse(&text, std::path::Path::new("arm_raise.toml")).unwrap()
+}
+
+/// Along a plan sampled at 41 times: the largest angular momentum about the centre of mass (N·m·s), how
+/// far the centre of mass moves (m), and the pelvis' turn about y at the end (degrees).
+fn momentum_along(task: &mut mintorque::plan::task::Task) -> (f64, f64, f64) {
+    let plan = task.plan(&mut |_| {}).unwrap();
+    let spec = &task.spec;
+    let times: Vec<f64> = (0..=40).map(|k| spec.duration * k as f64 / 40.0).collect();
+    let samples = mintorque::plan::sample(spec, &plan, &times).unwrap();
+    let model = &spec.model;
+    let mut data = Data::new(model);
+    let (mut worst, mut drift, mut turn) = (0.0f64, 0.0f64, 0.0);
+    let c0 = com(model, &samples[0].q);
+    for s in &samples {
+        kinematics::placements(model, &mut data, &s.q);
+        kinematics::velocities(model, &mut data, &s.qd);
+        // Spatial momentum Σ Iᵢ vᵢ about the world origin; its moment about the centre of mass.
+        let (mut moment, mut linear) = (Vec3::zeros(), Vec3::zeros());
+        for i in 1..model.bodies.len() {
+            let h = data.oI[i].mul(&data.v[i]);
+            moment += h.n;
+            linear += h.f;
+        }
+        let c = kinematics::center_of_mass(model, &data, true).unwrap();
+        worst = worst.max((moment - c.cross(&linear)).norm());
+        drift = drift.max((c - c0).norm());
+        let pelvis = data.oMi[model.body_index("lower_torso").unwrap()].rotation;
+        turn = pelvis[(0, 2)].atan2(pelvis[(2, 2)]).to_degrees();
+        // The free root's rotation stays far from its gimbal lock (root_roll ±90°).
+        assert!(model.root_roll_margin(&s.q).is_none_or(|m| m > 80f64.to_radians()));
+    }
+    (worst, drift, turn)
+}
+
+#[test]
+fn a_free_floating_arm_raise_turns_the_body_and_conserves_momentum_unlike_a_held_one() {
+    let (free_l, free_drift, free_turn) = momentum_along(&mut arm_raise_task("free"));
+    let (held_l, held_drift, held_turn) = momentum_along(&mut arm_raise_task("fixed"));
+    eprintln!("free: |L_com| ≤ {free_l:.4} N·m·s, CoM moves {:.2} mm, pelvis turns {free_turn:.2}°", free_drift * 1e3);
+    eprintln!("held: |L_com| ≤ {held_l:.4} N·m·s, CoM moves {:.2} mm, pelvis turns {held_turn:.2}°", held_drift * 1e3);
+    // Held by the foot, the arm's swing is angular momentum the floor supplies, and the centre of mass follows
+    // the arm forward; floating free, the momentum stays zero and the centre of mass stays put.
+    assert!(held_l > 0.5 && free_l < 0.05 * held_l, "angular momentum: free {free_l}, held {held_l}");
+    assert!(held_drift > 0.01 && free_drift < 0.05 * held_drift, "CoM drift: free {free_drift}, held {held_drift}");
+    // The arm flexes about −y; the floating body turns the other way, about +y.
+    assert!(free_turn > 1.0, "the floating pelvis turns {free_turn}° about +y");
+}
