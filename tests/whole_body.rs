@@ -268,3 +268,23 @@ fn a_free_floating_arm_raise_turns_the_body_and_conserves_momentum_unlike_a_held
     // The arm flexes about −y; the floating body turns the other way, about +y.
     assert!(free_turn > 1.0, "the floating pelvis turns {free_turn}° about +y");
 }
+
+#[test]
+fn a_free_floating_figure_with_a_balance_constraint_or_a_fixed_goal_is_refused_naming_the_field() {
+    let base = "[model]\nhuman = \"whole_body\"\nroot = \"free\"\n\n[motion]\nduration = 1.0\nstart = {}\n";
+    let goal = "\n[[motion.frame_goal]]\nframe = \"l_hand\"\nposition = [0.68, 0.2, 1.5]\n";
+    let cases = [
+        (format!("{base}{goal}\n[constraints.balance]\nx = [-0.05, 0.2]\ny = [-0.1, 0.1]\n"), "constraints.balance"),
+        (
+            format!("{base}{goal}\n[[constraints.contact]]\nframe = \"l_toe\"\npush_only = true\n"),
+            "constraints.contact[0].push_only",
+        ),
+        (format!("{base}goal = {{ l_shoulder_y = 90.0 }}\n"), "motion.goal"),
+        (base.replace("\"free\"", "\"loose\"") + goal, "model.root"),
+    ];
+    for (text, field) in cases {
+        let err =
+            mintorque::plan::task::Task::parse(&text, std::path::Path::new("astronaut.toml")).err().expect(field).to_string();
+        assert!(err.contains("astronaut.toml") && err.contains(field), "{field}: {err}");
+    }
+}

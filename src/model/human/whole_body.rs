@@ -137,7 +137,7 @@ fn spine_and_arms(b: &mut Builder, pelvis: usize) {
 /// The whole body's named reference postures, `(joint, degrees)` for the joints not at 0 (left and right
 /// alike): `standing` (all 0), `stoop` (knees nearly straight, trunk bent past horizontal, arms hanging:
 /// the hands at 0.54 m) and `squat` (heels down, knees and hips bent 90° and 110°, trunk 80° forward, the
-/// hands at 0.22 m).
+/// hands at 0.18 m).
 pub(super) fn posture(name: &str) -> Result<Vec<(String, f64)>> {
     let both: &[(&str, f64)] = match name {
         "standing" => &[],
