@@ -181,7 +181,7 @@ fn every_structure_validates_with_its_documented_joints_and_frames() {
 
 #[test]
 fn structure_names_round_trip_and_unknown_names_list_the_known_ones() {
-    assert_eq!(Structure::names(), ["sagittal", "free_arms", "hanging", "push_up"]);
+    assert_eq!(Structure::names(), ["sagittal", "free_arms", "hanging", "push_up", "whole_body"]);
     for s in Structure::ALL {
         assert_eq!(Structure::from_name(s.name()).unwrap(), s);
         assert_eq!(s.to_string().parse::<Structure>().unwrap(), s);

@@ -11,6 +11,7 @@
 
 pub mod collision;
 pub mod figure;
+pub mod floating;
 pub mod human;
 pub mod lock;
 pub mod mjcf;

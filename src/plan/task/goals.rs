@@ -106,8 +106,13 @@ fn frame_goal(model: &Model, g: &FrameGoalSpec, duration: f64, field: &str, orig
 /// the joint limits is an error saying by how much.
 pub(super) fn goal_postures(spec: &mut Spec, origin: &str) -> Result<()> {
     let model = &spec.model;
-    let limits = model.position_limits();
-    let limits = spec.position_limits.then_some((limits.0.as_slice(), limits.1.as_slice()));
+    let mut limits = model.position_limits();
+    // Inverse kinematics does not move a free root: its end pose is the planner's, from the momentum.
+    for i in (0..model.nv()).filter(|&i| model.is_unactuated(i)) {
+        (limits.0[i], limits.1[i]) = (spec.start[i], spec.start[i]);
+    }
+    let free = model.is_free_floating();
+    let limits = (spec.position_limits || free).then_some((limits.0.as_slice(), limits.1.as_slice()));
     let at_end: Vec<&FrameGoal> = spec.frame_goals.iter().filter(|g| g.t.is_none()).collect();
     if !at_end.is_empty() {
         spec.goal = reached(model, (&at_end, &spec.contacts), &spec.goal, limits, origin)?;

@@ -13,7 +13,7 @@ use std::path::Path;
 
 /// Resolves a parsed task file against its model; `base` is the task file's folder, `origin` the file.
 pub fn resolve(file: &TaskFile, base: &Path, origin: &str) -> Result<Spec> {
-    let (mut model, base_posture) = figure(&file.model, &file.motion.base, base, origin)?;
+    let (mut model, bases) = figure(&file.model, &file.motion, base, origin)?;
     let env = &file.environment;
     let gravity = gravity(&env.gravity, &super::up::axis(&env.up, origin)?, origin)?;
     payloads(&mut model, &env.payload, origin)?;
@@ -21,10 +21,10 @@ pub fn resolve(file: &TaskFile, base: &Path, origin: &str) -> Result<Spec> {
     limits(&mut model, &file.constraints, origin)?;
     let loads = forces(&model, &env.force, origin)?;
     let m = &file.motion;
-    let mut start = posture(&model, &m.start, &base_posture, "motion.start", origin)?;
+    let mut start = posture(&model, &m.start, &bases.start, "motion.start", origin)?;
     let frame_goals = super::goals::frame_goals(&model, m, origin)?;
     let mut goal = match &m.goal {
-        Some(goal) => posture(&model, goal, &base_posture, "motion.goal", origin)?,
+        Some(goal) => posture(&model, goal, &bases.goal, "motion.goal", origin)?,
         // With a goal at the end, inverse kinematics starts from the start posture.
         None if frame_goals.iter().any(|g| g.t.is_none()) => start.clone(),
         None => {
@@ -34,7 +34,8 @@ pub fn resolve(file: &TaskFile, base: &Path, origin: &str) -> Result<Spec> {
     let (start_condition, goal_condition) = super::goals::end_conditions(m, origin)?;
     let contacts = contacts(&model, &file.constraints.contact, &start, origin)?;
     close_loops(&model, &contacts, &m.close_loop_with, [&mut start, &mut goal], origin)?;
-    let (objective, weights) = objective(&model, &file.objective, origin)?;
+    let (objective, mut weights) = objective(&model, &file.objective, origin)?;
+    free_floating(&model, file, &frame_goals, &mut weights, origin)?;
     let initial_guess = guess::initial_guess(&model, file, (&start, &goal), base, origin)?;
     let c = &file.constraints;
     let obstacles = super::solids::obstacles(&env.obstacle, origin)?;
@@ -70,6 +71,41 @@ pub fn resolve(file: &TaskFile, base: &Path, origin: &str) -> Result<Spec> {
     Ok(spec)
 }
 
+/// A free-floating figure (`model.root = "free"`): its root's six generalised forces are held at zero by
+/// their effort limits of 0 and left out of the objective (weight 0). It has no ground, so neither a balance
+/// constraint nor push-only (ground) contacts; and its end pose follows from its momentum, so its goal
+/// must be a frame goal at the end (the goal posture is then solved for).
+fn free_floating(
+    model: &Model,
+    file: &TaskFile,
+    frame_goals: &[crate::plan::FrameGoal],
+    weights: &mut [f64],
+    origin: &str,
+) -> Result<()> {
+    if !model.is_free_floating() {
+        return Ok(());
+    }
+    let c = &file.constraints;
+    if c.balance.is_some() {
+        let message = "a free-floating figure (model.root = \"free\") stands on no ground: it has no centre of pressure to keep in a support";
+        return Err(Error::task(origin, "constraints.balance", message));
+    }
+    if let Some(k) = c.contact.iter().position(|cs| cs.push_only) {
+        let message = "a free-floating figure (model.root = \"free\") has no ground to push on: hold a frame with a bilateral contact (push_only = false), or fix the root";
+        return Err(Error::task(origin, format!("constraints.contact[{k}].push_only"), message));
+    }
+    if !frame_goals.iter().any(|g| g.t.is_none()) {
+        let message = "a free-floating figure's end pose follows from its momentum: give where it is to reach as a [[motion.frame_goal]] at the end (no t), and the goal posture is solved for";
+        return Err(Error::task(origin, "motion.goal", message));
+    }
+    for (i, w) in weights.iter_mut().enumerate() {
+        if model.is_unactuated(i) {
+            *w = 0.0;
+        }
+    }
+    Ok(())
+}
+
 /// Gravity presets (m/s², along −up, `environment.up`): earth 9.81, mars 3.71, moon 1.62, space 0.
 pub fn gravity_preset(name: &str) -> Option<f64> {
     match name {
@@ -85,23 +121,38 @@ fn vec3(a: &[f64; 3]) -> Vec3 {
     Vec3::new(a[0], a[1], a[2])
 }
 
-/// The model, with its locked joints welded, and the base posture of the unlocked ones.
-fn figure(m: &ModelSection, base_name: &str, base: &Path, origin: &str) -> Result<(Model, Vec<f64>)> {
+/// The base postures of `start` and `goal` (`motion.base`, `start_base`, `goal_base`).
+pub(super) struct Bases {
+    start: Vec<f64>,
+    goal: Vec<f64>,
+}
+
+/// The model, with its locked joints welded, and the base postures of the unlocked joints.
+fn figure(m: &ModelSection, motion: &MotionSection, base: &Path, origin: &str) -> Result<(Model, Bases)> {
     let model = load_model(m, base, origin)?;
-    let base_posture = match base_name {
-        "zero" => vec![0.0; model.nv()],
-        "reference" => {
-            let name = m
-                .human
-                .as_deref()
-                .ok_or_else(|| Error::task(origin, "motion.base", "\"reference\" needs a built-in human model"))?;
-            let structure = model::human::Structure::from_name(name)?;
-            structure.reference_pose(human_params(m.stature, m.mass))?
+    let named = |name: &str, field: &str| -> Result<Vec<f64>> {
+        if name == "zero" {
+            return Ok(vec![0.0; model.nv()]);
         }
-        other => return Err(Error::task(origin, "motion.base", format!("unknown base posture \"{other}\" (zero, reference)"))),
+        let structure = m
+            .human
+            .as_deref()
+            .ok_or_else(|| Error::task(origin, field, format!("\"{name}\" needs a built-in human model (without one: zero)")))?;
+        let structure = model::human::Structure::from_name(structure)?;
+        structure.posture(name, human_params(m.stature, m.mass), &model).map_err(|e| {
+            Error::task(origin, field, format!("{} (or zero)", e.to_string().rsplit(": ").next().unwrap_or_default()))
+        })
+    };
+    let start = match &motion.start_base {
+        Some(b) => named(b, "motion.start_base")?,
+        None => named(&motion.base, "motion.base")?,
+    };
+    let goal = match &motion.goal_base {
+        Some(b) => named(b, "motion.goal_base")?,
+        None => named(&motion.base, "motion.base")?,
     };
     if m.lock.is_empty() {
-        return Ok((model, base_posture));
+        return Ok((model, Bases { start, goal }));
     }
     let mut locks = Vec::new();
     for (name, value) in &m.lock {
@@ -109,10 +160,11 @@ fn figure(m: &ModelSection, base_name: &str, base: &Path, origin: &str) -> Resul
         let i = dof(&model, name, &field, origin)?;
         locks.push((i, joint_value(&model, i, *value, &field, origin)?));
     }
-    let kept = (0..model.nv()).filter(|i| !locks.iter().any(|(d, _)| d == i)).map(|i| base_posture[i]).collect();
+    let kept = |q: &[f64]| (0..model.nv()).filter(|i| !locks.iter().any(|(d, _)| d == i)).map(|i| q[i]).collect();
+    let bases = Bases { start: kept(&start), goal: kept(&goal) };
     let model = model.with_locked(&locks);
     model.validate(origin)?;
-    Ok((model, kept))
+    Ok((model, bases))
 }
 
 fn load_model(m: &ModelSection, base: &Path, origin: &str) -> Result<Model> {
@@ -129,13 +181,20 @@ fn load_model(m: &ModelSection, base: &Path, origin: &str) -> Result<Model> {
         Error::Io { path, error } => Error::task(origin, field, format!("cannot read {}: {error}", path.display())),
         other => Error::task(origin, field, other.to_string()),
     };
-    if let Some(p) = &m.urdf {
-        return model::urdf::load(&base.join(p)).map_err(|e| unreadable("model.urdf", e));
-    }
-    if let Some(p) = &m.figure {
-        return model::load_any(&base.join(p)).map_err(|e| unreadable("model.figure", e));
-    }
-    load_human(m.human.as_deref().unwrap_or_default(), m.stature, m.mass, origin)
+    let free = match m.root.as_deref() {
+        None | Some("fixed") => false,
+        Some("free") => true,
+        Some(other) => return Err(Error::task(origin, "model.root", format!("unknown root \"{other}\" (fixed, free)"))),
+    };
+    let fixed = if let Some(p) = &m.urdf {
+        model::urdf::load(&base.join(p)).map_err(|e| unreadable("model.urdf", e))?
+    } else if let Some(p) = &m.figure {
+        model::load_any(&base.join(p)).map_err(|e| unreadable("model.figure", e))?
+    } else {
+        return load_human(m.human.as_deref().unwrap_or_default(), m.stature, m.mass, free, origin);
+    };
+    // A model file's root frame floats from where it is.
+    Ok(if free { fixed.with_free_root(crate::spatial::Transform::IDENTITY) } else { fixed })
 }
 
 /// The built-in human's size: 1.83 m and 81 kg unless given.
@@ -145,7 +204,7 @@ fn human_params(stature: Option<f64>, mass: Option<f64>) -> model::human::HumanP
 }
 
 /// A built-in human (`model::human`), its errors renamed to the task's fields.
-fn load_human(name: &str, stature: Option<f64>, mass: Option<f64>, origin: &str) -> Result<Model> {
+fn load_human(name: &str, stature: Option<f64>, mass: Option<f64>, free: bool, origin: &str) -> Result<Model> {
     let in_task = |e: Error| match e {
         Error::Model { element, message, .. } => {
             let field = match element.as_str() {
@@ -159,7 +218,12 @@ fn load_human(name: &str, stature: Option<f64>, mass: Option<f64>, origin: &str)
         other => other,
     };
     let structure = model::human::Structure::from_name(name).map_err(in_task)?;
-    structure.build(human_params(stature, mass)).map_err(in_task)
+    let params = human_params(stature, mass);
+    if free {
+        model::human::build_free(structure, params).map_err(in_task)
+    } else {
+        structure.build(params).map_err(in_task)
+    }
 }
 
 fn gravity(g: &Gravity, up: &Vec3, origin: &str) -> Result<Vec3> {

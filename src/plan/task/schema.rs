@@ -118,6 +118,10 @@ pub struct ModelSection {
     pub stature: Option<f64>,
     /// Total mass of the built-in human (kg).
     pub mass: Option<f64>,
+    /// How the figure is held: "fixed" (default: its root body welded to the world — the feet of a
+    /// standing human) or "free" (a 6-DOF unactuated root: the figure floats, turning and drifting as its
+    /// momentum dictates; `model::floating`).
+    pub root: Option<String>,
     /// Joints welded at a value for this task (degrees, metres for prismatic): fewer degrees of freedom.
     #[serde(default)]
     pub lock: BTreeMap<String, f64>,
@@ -135,9 +139,14 @@ pub struct MotionSection {
     /// then where inverse kinematics for the initial guess starts (the start posture if absent).
     pub goal: Option<Posture>,
     /// The posture unnamed joints take: "zero" (default) or, for a built-in human, "reference" (standing /
-    /// dead hang / top of a push-up).
+    /// dead hang / top of a push-up) or one of its named postures ("standing", "stoop", "squat" for
+    /// `whole_body`).
     #[serde(default = "zero")]
     pub base: String,
+    /// The base posture of `start` alone, overriding `base` (e.g. "stoop" for the whole-body human).
+    pub start_base: Option<String>,
+    /// The base posture of `goal` alone, overriding `base`.
+    pub goal_base: Option<String>,
     /// `q̇ = 0` at both ends (default true); `false` is `start_condition = goal_condition = "free"`.
     pub zero_end_velocity: Option<bool>,
     /// How the motion starts: "rest" (`q̇ = 0`, default), "hold" (`q̇ = q̈ = 0`: at rest holding the

@@ -215,7 +215,11 @@ impl Transcription<'_> {
             IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) => {
                 let limit = self.torque_bound(i, matches!(row, IneqRow::UpperTorque(_)));
                 let unit = if prismatic(i) { "N" } else { "N·m" };
-                format!("{} {unit} over the {limit:.1} {unit} limit ({} %)", num(raw), num(100.0 * raw / limit))
+                if limit == 0.0 {
+                    format!("{} {unit} on an unactuated joint (must be 0)", num(raw))
+                } else {
+                    format!("{} {unit} over the {limit:.1} {unit} limit ({} %)", num(raw), num(100.0 * raw / limit))
+                }
             }
             IneqRow::Push(_) => format!("pulls with {} N", num(raw)),
             IneqRow::Friction(..) => format!("{} N outside the friction cone", num(raw)),

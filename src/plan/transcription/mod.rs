@@ -182,8 +182,9 @@ impl<'s> Transcription<'s> {
                 }
             }
         }
-        if spec.torque_limits {
-            for i in 0..nv {
+        // A free root's generalised forces are held at 0 (τ ≤ 0 and −τ ≤ 0) whether or not the limits are.
+        for i in 0..nv {
+            if spec.torque_limits || model.is_unactuated(i) {
                 if effort[0][i].is_finite() {
                     ineq_rows.push(IneqRow::UpperTorque(i));
                 }

@@ -93,6 +93,10 @@ impl Problem for Transcription<'_> {
                         1.0
                     }
                 }
+                // An unactuated joint's bound is 0: its rows are scaled by the figure's weight (N, N·m per m).
+                IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) if self.spec.model.is_unactuated(i) => {
+                    self.total_weight.max(1.0)
+                }
                 IneqRow::UpperTorque(i) => self.torque_bound(i, true).max(1e-9),
                 IneqRow::LowerTorque(i) => self.torque_bound(i, false).max(1e-9),
                 IneqRow::Push(_) | IneqRow::Friction(..) => self.total_weight.max(1.0),
@@ -143,6 +147,9 @@ impl Problem for Transcription<'_> {
                 let what = match row {
                     IneqRow::UpperPosition(i) => format!("upper position limit of joint \"{}\"", joint(i)),
                     IneqRow::LowerPosition(i) => format!("lower position limit of joint \"{}\"", joint(i)),
+                    IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) if self.spec.model.is_unactuated(i) => {
+                        format!("zero force of the free root's unactuated joint \"{}\"", joint(i))
+                    }
                     IneqRow::UpperTorque(i) => format!("torque limit (+) of joint \"{}\"", joint(i)),
                     IneqRow::LowerTorque(i) => format!("torque limit (−) of joint \"{}\"", joint(i)),
                     IneqRow::Push(c) => format!("push-only contact force of \"{}\"", contact(c)),
