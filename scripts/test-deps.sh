@@ -6,3 +6,5 @@ set -euo pipefail
 python3 -m pip install --quiet --disable-pip-version-check --root-user-action=ignore 'bvh==0.3'
 # tests/sweep.rs reads the sweep's Parquet table back with pyarrow.
 python3 -m pip install --quiet --disable-pip-version-check --root-user-action=ignore 'pyarrow==21.0.0'
+# tests/osim.rs compares the .osim import with OpenSim 4.6 itself, in its own venv.
+bash "$(dirname "$0")/opensim-venv.sh"

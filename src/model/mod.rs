@@ -13,6 +13,7 @@ pub mod collision;
 pub mod figure;
 pub mod human;
 pub mod lock;
+pub mod osim;
 pub mod toml_doc;
 pub mod urdf;
 pub mod urdf_export;
@@ -22,8 +23,8 @@ use crate::error::{Error, Result};
 use crate::spatial::{Inertia, Transform, Vec3};
 use std::path::Path;
 
-/// Reads a model file of either format, chosen by extension: `.urdf` or `.xml` for URDF, `.toml` for a
-/// figure file (`docs/figure-file.md`).
+/// Reads a model file of any format, chosen by extension: `.urdf` or `.xml` for URDF, `.toml` for a
+/// figure file (`docs/figure-file.md`), `.osim` for OpenSim (uncoupled models only, [`osim::load_model`]).
 pub fn load_any(path: &Path) -> Result<Model> {
     load_any_with(path, urdf::Options::default())
 }
@@ -34,11 +35,12 @@ pub fn load_any_with(path: &Path, options: urdf::Options) -> Result<Model> {
     match ext.as_deref() {
         Some("urdf" | "xml") => urdf::load_with(path, options),
         Some("toml") => figure::load(path),
+        Some("osim") => osim::load_model(path),
         other => Err(Error::model(
             path.display().to_string(),
             "file name",
             format!(
-                "cannot tell the model format from the extension {}: use .urdf or .xml for URDF, .toml for a figure file",
+                "cannot tell the model format from the extension {}: use .urdf or .xml for URDF, .toml for a figure file, .osim for OpenSim",
                 other.map_or("(none)".to_string(), |e| format!(".{e}"))
             ),
         )),

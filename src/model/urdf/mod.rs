@@ -477,6 +477,8 @@ impl Cx<'_, '_> {
     }
 }
 
-fn parse_finite(s: &str) -> Option<f64> {
+/// A number that parses and is finite (`"nan"`, `"inf"` are not numbers a model means); the OpenSim
+/// reader shares it.
+pub(super) fn parse_finite(s: &str) -> Option<f64> {
     s.trim().parse::<f64>().ok().filter(|x| x.is_finite())
 }
