@@ -96,7 +96,11 @@ fn compare_with_opensim(files: &[PathBuf]) -> f64 {
             worst = worst.max(rel);
             assert!(rel < 1e-6, "{file} state {k}: relative error {rel:e}\nours   {tau:?}\nOpenSim {expected:?}");
         }
-        eprintln!("{file}: OpenSim {}, {} states, worst relative difference {worst:e}", reference["opensim"], m["states"].as_array().map_or(0, |s| s.len()));
+        eprintln!(
+            "{file}: OpenSim {}, {} states, worst relative difference {worst:e}",
+            reference["opensim"],
+            m["states"].as_array().map_or(0, |s| s.len())
+        );
     }
     worst
 }
@@ -258,17 +262,40 @@ fn error_of(text: &str) -> String {
 #[test]
 fn bad_input_is_a_clear_error() {
     let cases: Vec<(String, Vec<&str>)> = vec![
-        (broken("<PinJoint name=\"neck\">", "<EllipsoidJoint name=\"neck\">").replacen("</PinJoint>", "</EllipsoidJoint>", 1), vec!["EllipsoidJoint", "neck", "head"]),
-        (broken("<LinearFunction name=\"function\">", "<StepFunction name=\"function\">").replacen("</LinearFunction>", "</StepFunction>", 1), vec!["StepFunction", "hip_r", "rotation1"]),
-        (broken("<socket_parent>/bodyset/head</socket_parent>", "<socket_parent>/bodyset/heda</socket_parent>"), vec!["heda", "head"]),
+        (
+            broken("<PinJoint name=\"neck\">", "<EllipsoidJoint name=\"neck\">").replacen("</PinJoint>", "</EllipsoidJoint>", 1),
+            vec!["EllipsoidJoint", "neck", "head"],
+        ),
+        (
+            broken("<LinearFunction name=\"function\">", "<StepFunction name=\"function\">").replacen(
+                "</LinearFunction>",
+                "</StepFunction>",
+                1,
+            ),
+            vec!["StepFunction", "hip_r", "rotation1"],
+        ),
+        (
+            broken("<socket_parent>/bodyset/head</socket_parent>", "<socket_parent>/bodyset/heda</socket_parent>"),
+            vec!["heda", "head"],
+        ),
         (broken("<mass>5</mass>", "<mass>-5</mass>"), vec!["body \"head\"", "mass"]),
         (broken("<mass>5</mass>", "<mass>nan</mass>"), vec!["body \"head\"", "finite"]),
         (
-            broken("<inertia>0.029999999999999999 0.02 0.029999999999999999 0 0 0</inertia>", "<inertia>0.03 0.02 -0.03 0 0 0</inertia>"),
+            broken(
+                "<inertia>0.029999999999999999 0.02 0.029999999999999999 0 0 0</inertia>",
+                "<inertia>0.03 0.02 -0.03 0 0 0</inertia>",
+            ),
             vec!["body \"head\"", "positive semi-definite"],
         ),
         (broken("<OpenSimDocument Version=\"40600\">", "<OpenSimDocument Version=\"30000\">"), vec!["OpenSim 3"]),
-        (broken("<Body name=\"head\">", "<Body name=\"head\">\n<!-- -->").replacen("<PinJoint name=\"neck\">", "<PinJoint name=\"neck\"><coordinates/>", 1), vec!["neck"]),
+        (
+            broken("<Body name=\"head\">", "<Body name=\"head\">\n<!-- -->").replacen(
+                "<PinJoint name=\"neck\">",
+                "<PinJoint name=\"neck\"><coordinates/>",
+                1,
+            ),
+            vec!["neck"],
+        ),
     ];
     for (text, words) in cases {
         let e = error_of(&text);

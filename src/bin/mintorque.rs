@@ -77,7 +77,7 @@ enum Command {
     Export {
         /// The plan directory.
         dir: PathBuf,
-        /// bvh (Blender, MotionBuilder), gltf (binary .glb), mot (OpenSim), csv.
+        /// bvh (Blender, MotionBuilder), gltf (binary .glb), mot (OpenSim), osim (the figure, for OpenSim), csv.
         #[arg(long)]
         format: String,
         /// Output file (default: inside DIR, named after the model).
@@ -186,6 +186,12 @@ fn load_model(path: &Path, read: ModelArgs) -> Result<mintorque::Model> {
         MimicArg::Refuse => Mimic::Refuse,
         MimicArg::Independent => Mimic::Independent,
     };
+    if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("osim")) {
+        // An OpenSim file: say what of it is not modelled (muscles, constraints …).
+        let osim = mintorque::model::osim::load(path)?;
+        osim.ignored.iter().for_each(|note| eprintln!("note: {}: ignored {note}", path.display()));
+        return Ok(osim.into_model(&path.display().to_string())?);
+    }
     mintorque::model::load_any_with(path, Options { mimic }).map_err(|e| match &e {
         mintorque::Error::Model { element, .. } if element.ends_with("<mimic>") => {
             anyhow::Error::new(e).context("pass `--mimic independent` to read a <mimic> joint as an independent joint")
@@ -258,7 +264,7 @@ fn run_export(dir: &Path, format: &str, out: Option<PathBuf>) -> Result<()> {
 }
 
 fn run_figure(model: Option<PathBuf>, read: ModelArgs, human: Option<String>, stature: f64, mass: f64, out: &Path) -> Result<()> {
-    use mintorque::model::{figure, human as jack, urdf_export};
+    use mintorque::model::{figure, human as jack, osim, urdf_export};
     let model = match (model, human) {
         (Some(path), None) => load_model(&path, read)?,
         (None, Some(name)) => {
@@ -269,7 +275,8 @@ fn run_figure(model: Option<PathBuf>, read: ModelArgs, human: Option<String>, st
     let text = match out.extension().and_then(|e| e.to_str()) {
         Some("urdf") | Some("xml") => urdf_export::to_urdf(&model),
         Some("toml") => figure::to_toml(&model),
-        _ => anyhow::bail!("{}: the output must end in .urdf or .toml", out.display()),
+        Some("osim") => osim::to_osim(&model),
+        _ => anyhow::bail!("{}: the output must end in .urdf, .toml or .osim", out.display()),
     };
     plan_dir::write_file(out, text.as_bytes())?;
     println!("wrote {} ({} joints)", out.display(), model.nv());

@@ -25,7 +25,11 @@ pub(super) fn build(parsed: Parsed, origin: &str) -> Result<(Model, Coordinates,
     let at = |j: &OsimJoint| format!("{origin}:{}", j.line);
     for j in &joints {
         if j.child.0 == 0 {
-            return Err(Error::model(at(j), format!("joint \"{}\"", j.name), "its child frame is on the ground (a reversed joint): not supported"));
+            return Err(Error::model(
+                at(j),
+                format!("joint \"{}\"", j.name),
+                "its child frame is on the ground (a reversed joint): not supported",
+            ));
         }
     }
     // Joints in tree order: a joint is built once its parent body is placed.
@@ -43,7 +47,8 @@ pub(super) fn build(parsed: Parsed, origin: &str) -> Result<(Model, Coordinates,
         }
         let first = coordinates.coordinates.len();
         coordinates.coordinates.extend(j.coordinates.iter().cloned());
-        let (body, in_body) = add_joint(&mut model, &mut coordinates.chain, j, first, placed[j.parent.0].unwrap_or_default(), &child.name);
+        let (body, in_body) =
+            add_joint(&mut model, &mut coordinates.chain, j, first, placed[j.parent.0].unwrap_or_default(), &child.name);
         lines.resize(model.bodies.len(), j.line);
         // The body's mass properties, from its OpenSim frame into the model body's.
         let merged = model.bodies[body].inertia.merged(&child.inertia.transformed(&in_body));
@@ -69,13 +74,22 @@ pub(super) fn build(parsed: Parsed, origin: &str) -> Result<(Model, Coordinates,
     }
     for m in &markers {
         let (body, in_body) = placed[m.body].unwrap_or_default();
-        model.frames.push(Frame { name: m.name.clone(), body, placement: in_body.compose(&Transform::from_translation(m.location)) });
+        model.frames.push(Frame {
+            name: m.name.clone(),
+            body,
+            placement: in_body.compose(&Transform::from_translation(m.location)),
+        });
     }
     for c in coordinates.coordinates.iter().filter(|c| c.locked) {
-        ignored.push(format!("coordinate \"{}\" is locked at {} in the file: kept free here (lock it in the task)", c.name, c.default_value));
+        ignored.push(format!(
+            "coordinate \"{}\" is locked at {} in the file: kept free here (lock it in the task)",
+            c.name, c.default_value
+        ));
     }
     model.check().map_err(|p| match p.culprit {
-        Culprit::Body(i) | Culprit::Joint(i) if i < lines.len() => Error::model(format!("{origin}:{}", lines[i]), p.element, p.message),
+        Culprit::Body(i) | Culprit::Joint(i) if i < lines.len() => {
+            Error::model(format!("{origin}:{}", lines[i]), p.element, p.message)
+        }
         _ => Error::model(origin, p.element, p.message),
     })?;
     Ok((model, coordinates, ignored))
@@ -83,7 +97,14 @@ pub(super) fn build(parsed: Parsed, origin: &str) -> Result<(Model, Coordinates,
 
 /// Adds joint `j`'s moving steps below `(parent body, F's parent frame in it)`; returns the model body that
 /// carries the child and the child body's frame in it (`C = (pending steps)·X_BM⁻¹`).
-fn add_joint(model: &mut Model, chain: &mut Vec<ChainDof>, j: &OsimJoint, first: usize, parent: (usize, Transform), child_name: &str) -> (usize, Transform) {
+fn add_joint(
+    model: &mut Model,
+    chain: &mut Vec<ChainDof>,
+    j: &OsimJoint,
+    first: usize,
+    parent: (usize, Transform),
+    child_name: &str,
+) -> (usize, Transform) {
     let (mut body, in_parent) = parent;
     // The placement of the next moving step in `body`'s frame: parent frame, F, then constant steps.
     let mut pending = in_parent.compose(&j.parent.1);
@@ -91,11 +112,13 @@ fn add_joint(model: &mut Model, chain: &mut Vec<ChainDof>, j: &OsimJoint, first:
     let group = (moving.len() > 1).then(|| j.name.clone());
     for (e, element) in j.elements.iter().enumerate() {
         let kind = if element.rotational { JointKind::Revolute } else { JointKind::Prismatic };
-        let Drive::Coordinate { local, function } = &element.drive else {
-            let Drive::Constant(value) = element.drive else { unreachable!() };
-            // A constant step: X ← X·exp(axis·value).
-            pending = pending.compose(&joint_transform(kind, &element.axis, value));
-            continue;
+        let (local, function) = match &element.drive {
+            Drive::Coordinate { local, function } => (local, function),
+            Drive::Constant(value) => {
+                // A constant step: X ← X·exp(axis·value).
+                pending = pending.compose(&joint_transform(kind, &element.axis, *value));
+                continue;
+            }
         };
         let c = first + local;
         let coordinate = &j.coordinates[*local];
@@ -106,7 +129,16 @@ fn add_joint(model: &mut Model, chain: &mut Vec<ChainDof>, j: &OsimJoint, first:
         if itself && coordinate.clamped {
             (limits.lower, limits.upper) = coordinate.range;
         }
-        let joint = Joint { name: name.clone(), kind, parent: body, placement: pending, axis: element.axis, limits, passive: Passive::default(), group: group.clone() };
+        let joint = Joint {
+            name: name.clone(),
+            kind,
+            parent: body,
+            placement: pending,
+            axis: element.axis,
+            limits,
+            passive: Passive::default(),
+            group: group.clone(),
+        };
         let body_name = if Some(&e) == moving.last() { child_name.to_string() } else { name };
         body = model.add_body(joint, Body { name: body_name, inertia: Inertia::ZERO, shapes: vec![] });
         chain.push(ChainDof { coordinate: c, function: function.clone() });

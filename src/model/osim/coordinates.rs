@@ -104,7 +104,11 @@ impl Coordinates {
     /// `τ = Gᵀ τ_chain`, `τ_chain` the model's inverse dynamics at the chain's state.
     pub fn inverse_dynamics(&self, model: &Model, data: &mut Data, q: &[f64], v: &[f64], a: &[f64]) -> Result<Vec<f64>> {
         if model.nv() != self.chain.len() {
-            return Err(Error::input("inverse_dynamics", "model", format!("has {} DOF, the coordinates' chain {}", model.nv(), self.chain.len())));
+            return Err(Error::input(
+                "inverse_dynamics",
+                "model",
+                format!("has {} DOF, the coordinates' chain {}", model.nv(), self.chain.len()),
+            ));
         }
         let (qc, vc, ac) = self.chain_state(q, v, a)?;
         let tau_chain = rnea(model, data, &qc, &vc, &ac, &model.gravity, None);

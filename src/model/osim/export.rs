@@ -82,7 +82,8 @@ fn write_joint(out: &mut String, model: &Model, i: usize) {
         }
         let _ = writeln!(out, "            <axis>{}</axis>", numbers(axis.as_slice()));
         if driven {
-            let _ = writeln!(out, "            <LinearFunction name=\"function\"><coefficients>1 0</coefficients></LinearFunction>");
+            let _ =
+                writeln!(out, "            <LinearFunction name=\"function\"><coefficients>1 0</coefficients></LinearFunction>");
         } else {
             let _ = writeln!(out, "            <Constant name=\"function\"><value>0</value></Constant>");
         }

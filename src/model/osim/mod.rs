@@ -65,8 +65,14 @@ impl Osim {
         if !self.coordinates.is_coupled() {
             return Ok(self.model);
         }
-        let coupled: Vec<&str> =
-            self.coordinates.chain.iter().zip(self.model.joint_names()).filter(|(d, _)| !d.function.is_identity()).map(|(_, n)| n).collect();
+        let coupled: Vec<&str> = self
+            .coordinates
+            .chain
+            .iter()
+            .zip(self.model.joint_names())
+            .filter(|(d, _)| !d.function.is_identity())
+            .map(|(_, n)| n)
+            .collect();
         Err(Error::model(
             origin,
             "coordinates",

@@ -51,15 +51,16 @@ pub(super) struct Parsed {
 }
 
 /// The sets of components that carry no skeleton: reported as ignored, by name.
-const IGNORED_SETS: &[&str] =
-    &["ForceSet", "ConstraintSet", "ContactGeometrySet", "ControllerSet", "ProbeSet", "ComponentSet"];
+const IGNORED_SETS: &[&str] = &["ForceSet", "ConstraintSet", "ContactGeometrySet", "ControllerSet", "ProbeSet", "ComponentSet"];
 
-impl<'a, 'i> Cx<'a, 'i> {
+impl<'i> Cx<'_, 'i> {
     /// The `<Model>` of an OpenSim 4 document.
     pub(super) fn parse(&self) -> Result<Parsed> {
         let root = self.doc.root_element();
         let model = match root.tag_name().name() {
-            "OpenSimDocument" => self.child(root, "Model").ok_or_else(|| self.err(root, "<OpenSimDocument>", "has no <Model>"))?,
+            "OpenSimDocument" => {
+                self.child(root, "Model").ok_or_else(|| self.err(root, "<OpenSimDocument>", "has no <Model>"))?
+            }
             other => return Err(self.err(root, "root element", format!("expected <OpenSimDocument>, found <{other}>"))),
         };
         let version: u32 = root.attribute("Version").and_then(|v| v.trim().parse().ok()).unwrap_or(0);
@@ -143,7 +144,14 @@ impl<'a, 'i> Cx<'a, 'i> {
         self.resolve(joint, &path, &format!("{what} <{tag}>"), bodies, 0)
     }
 
-    fn resolve(&self, owner: Node<'_, 'i>, path: &str, what: &str, bodies: &[OsimBody], depth: usize) -> Result<(usize, Transform)> {
+    fn resolve(
+        &self,
+        owner: Node<'_, 'i>,
+        path: &str,
+        what: &str,
+        bodies: &[OsimBody],
+        depth: usize,
+    ) -> Result<(usize, Transform)> {
         let last = path.rsplit('/').find(|s| !s.is_empty() && *s != ".." && *s != ".").unwrap_or("");
         let frames = self.child(owner, "frames").or_else(|| self.child(owner, "components"));
         let offset = frames.and_then(|f| self.elements(f).find(|n| n.attribute("name") == Some(last)));
@@ -204,10 +212,10 @@ impl<'a, 'i> Cx<'a, 'i> {
         }
         let order = ["translation1", "translation2", "translation3", "rotation1", "rotation2", "rotation3"];
         let mut out = Vec::new();
+        // An absent axis is the constant 0.
         for label in order {
-            match axes.iter().find(|(l, _)| l == label) {
-                Some((_, e)) => out.push(e.clone().labelled(label, label.starts_with("rotation"))),
-                None => {} // an absent axis is the constant 0
+            if let Some((_, e)) = axes.iter().find(|(l, _)| l == label) {
+                out.push(e.clone().labelled(label, label.starts_with("rotation")));
             }
         }
         if let Some((l, _)) = axes.iter().find(|(l, _)| !order.contains(&l.as_str())) {
@@ -219,7 +227,8 @@ impl<'a, 'i> Cx<'a, 'i> {
     /// One `<TransformAxis>`: its axis, the coordinate driving it and the function of it.
     fn transform_axis(&self, node: Node<'_, 'i>, what: &str, coordinates: &[Coordinate]) -> Result<Element> {
         let axis = self.vec3(node, "axis", what)?;
-        let names: Vec<String> = self.text(node, "coordinates").unwrap_or_default().split_whitespace().map(String::from).collect();
+        let names: Vec<String> =
+            self.text(node, "coordinates").unwrap_or_default().split_whitespace().map(String::from).collect();
         let function = match self.function_node(node) {
             Some(f) => Some(self.function(f, what)?),
             None => None,
@@ -230,7 +239,13 @@ impl<'a, 'i> Cx<'a, 'i> {
                 let known: Vec<&str> = coordinates.iter().map(|c| c.name.as_str()).collect();
                 self.err(node, what, unknown_name("coordinate", one, &known, |n| format!("\"{n}\"")))
             })?),
-            _ => return Err(self.err(node, what, format!("a function of several coordinates ({}) is not supported", names.join(" ")))),
+            _ => {
+                return Err(self.err(
+                    node,
+                    what,
+                    format!("a function of several coordinates ({}) is not supported", names.join(" ")),
+                ))
+            }
         };
         joints::transform_axis(axis, coordinate, function).map_err(|m| self.err(node, what, m))
     }
@@ -282,7 +297,8 @@ impl<'a, 'i> Cx<'a, 'i> {
         for node in self.objects(model, "MarkerSet") {
             let name = self.name(node)?;
             let what = format!("marker \"{name}\"");
-            let path = self.text(node, "socket_parent_frame").ok_or_else(|| self.err(node, &what, "has no <socket_parent_frame>"))?;
+            let path =
+                self.text(node, "socket_parent_frame").ok_or_else(|| self.err(node, &what, "has no <socket_parent_frame>"))?;
             let (body, frame) = self.resolve(node, &path, &what, bodies, 0)?;
             let location = frame.act_point(&self.vec3(node, "location", &what)?);
             out.push(Marker { name, body, location });

@@ -12,7 +12,7 @@ pub(super) struct Cx<'a, 'i> {
     pub doc: &'a Document<'i>,
 }
 
-impl<'a, 'i> Cx<'a, 'i> {
+impl<'i> Cx<'_, 'i> {
     /// The 1-based line of `node`.
     pub fn line(&self, node: Node) -> u32 {
         self.doc.text_pos_at(node.range().start).row
