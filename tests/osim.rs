@@ -224,6 +224,35 @@ fn coupled_model_is_refused_where_plans_load_models() {
 }
 
 #[test]
+fn a_task_refuses_a_coupled_model_and_takes_an_uncoupled_one() {
+    let task = |file: &str, joint: &str| {
+        let text = format!(
+            "[model]\nfigure = \"{}\"\n[motion]\nduration = 1.0\nstart = {{ {joint} = -10.0 }}\ngoal = {{ {joint} = -40.0 }}\n",
+            data_dir().join(file).display()
+        );
+        mintorque::plan::task::Task::parse(&text, Path::new("task.toml"))
+    };
+    let e = task("coupled_legs.osim", "knee_angle_r").err().expect("coupled is refused").to_string();
+    assert!(e.contains("model.figure") && e.contains("coupled") && e.contains("knee_r_translation2"), "{e}");
+    let t = task("skeleton.osim", "knee_r_coord_0").unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(t.spec.model.nv(), 26);
+}
+
+/// The command line says what an `.osim` file had that the model does not, and why a coupled one is refused.
+#[test]
+fn the_cli_prints_what_it_ignored() {
+    let out_file = std::env::temp_dir().join(format!("mintorque-osim-cli-{}.urdf", std::process::id()));
+    let run = std::process::Command::new(env!("CARGO_BIN_EXE_mintorque"))
+        .args(["figure".as_ref(), data_dir().join("coupled_legs.osim").as_os_str(), "--out".as_ref(), out_file.as_os_str()])
+        .output()
+        .expect("run mintorque");
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("ignored ForceSet: CoordinateActuator") && stderr.contains("coupled joints"), "{stderr}");
+    assert!(!out_file.exists());
+}
+
+#[test]
 fn ignored_components_are_named() {
     let osim = load("coupled_legs.osim");
     let all = osim.ignored.join("\n");

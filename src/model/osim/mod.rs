@@ -65,14 +65,14 @@ impl Osim {
         if !self.coordinates.is_coupled() {
             return Ok(self.model);
         }
-        let coupled: Vec<&str> = self
-            .coordinates
-            .chain
-            .iter()
-            .zip(self.model.joint_names())
-            .filter(|(d, _)| !d.function.is_identity())
-            .map(|(_, n)| n)
+        // The chain DOFs that are not a coordinate itself, and the coordinates that drive no step.
+        let c = &self.coordinates;
+        let mut coupled: Vec<String> = (c.chain.iter().zip(self.model.joint_names()))
+            .filter(|(d, name)| c.coordinates[d.coordinate].name != *name)
+            .map(|(_, name)| name.to_string())
             .collect();
+        let idle = c.coordinates.iter().enumerate().filter(|(i, _)| !c.chain.iter().any(|d| d.coordinate == *i));
+        coupled.extend(idle.map(|(_, k)| format!("{} (drives no axis)", k.name)));
         Err(Error::model(
             origin,
             "coordinates",
