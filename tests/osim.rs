@@ -64,6 +64,43 @@ fn exported_models_have_opensim_dynamics() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// A plan's `.mot` plays on its exported `.osim` in OpenSim: every column is a coordinate, and OpenSim's
+/// reading (degrees to radians by the coordinates' types) is the planned start and goal (−70° → +70°).
+#[test]
+fn a_plans_mot_plays_on_its_exported_osim_in_opensim() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let dir = std::env::temp_dir().join(format!("mintorque-osim-mot-{}", std::process::id()));
+    let mintorque = |args: &[&std::ffi::OsStr]| {
+        let run = std::process::Command::new(env!("CARGO_BIN_EXE_mintorque")).args(args).output().expect("run mintorque");
+        assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    };
+    let os = |s: &'static str| std::ffi::OsStr::new(s);
+    mintorque(&[
+        os("plan"),
+        root.join("examples/pendulum.toml").as_os_str(),
+        os("--out"),
+        dir.as_os_str(),
+        os("--quiet"),
+        os("--no-plots"),
+    ]);
+    mintorque(&[os("export"), dir.as_os_str(), os("--format"), os("mot")]);
+    mintorque(&[os("export"), dir.as_os_str(), os("--format"), os("osim")]);
+    let python = root.join("target/opensim-venv/bin/python");
+    let out = std::process::Command::new(python)
+        .arg(root.join("tests/osim/reference.py"))
+        .arg("mot")
+        .args([dir.join("compound_pendulum.osim"), dir.join("compound_pendulum.mot")])
+        .output()
+        .expect("run reference.py");
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let read: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    assert_eq!(read["labels"], serde_json::json!(["pivot"]));
+    assert_eq!(read["missing"], serde_json::json!([]));
+    let (first, last) = (numbers(&read["first"])[0], numbers(&read["last"])[0]);
+    assert!((first + 70f64.to_radians()).abs() < 1e-8 && (last - 70f64.to_radians()).abs() < 1e-8, "{first} {last}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 /// Our coordinates' inverse dynamics against OpenSim's for each file; the worst relative difference.
 fn compare_with_opensim(files: &[PathBuf]) -> f64 {
     let reference = opensim_reference(files);

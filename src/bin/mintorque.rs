@@ -93,10 +93,10 @@ enum Command {
         #[arg(long)]
         filmstrip: Option<String>,
     },
-    /// Write a figure — a built-in human or a model file — as URDF (for any URDF viewer) or as a figure
-    /// file (TOML) to edit.
+    /// Write a figure — a built-in human or a model file — as URDF (for any URDF viewer), as a figure
+    /// file (TOML) to edit, or as an OpenSim model (.osim).
     Figure {
-        /// A URDF or figure file to convert.
+        /// A URDF, figure file or (uncoupled) OpenSim .osim to convert.
         model: Option<PathBuf>,
         /// A built-in human structure instead: sagittal, free_arms, hanging, push_up.
         #[arg(long, conflicts_with = "model")]
@@ -107,7 +107,7 @@ enum Command {
         /// Body mass of the built-in human (kg, 20–250).
         #[arg(long, default_value_t = 81.0)]
         mass: f64,
-        /// Output file: .urdf for URDF, .toml for a figure file.
+        /// Output file: .urdf for URDF, .toml for a figure file, .osim for OpenSim.
         #[arg(long, short)]
         out: PathBuf,
         #[command(flatten)]
@@ -127,7 +127,7 @@ enum Command {
     /// Inverse dynamics, its derivatives, H(q) and forward dynamics of a model at the states of a file
     /// (the reference data's JSON format), printed as JSON in the file's joint order.
     Dynamics {
-        /// A URDF (.urdf) or figure file (.toml).
+        /// A URDF (.urdf), figure file (.toml) or uncoupled OpenSim model (.osim).
         model: PathBuf,
         /// States file: JSON with `joints[].name` and `states[]` of `q`, `v`, `a` (and `tau_rand`).
         #[arg(long, required_unless_present = "bench")]

@@ -4,6 +4,8 @@
   reference.py build DIR        writes the test models (built with the OpenSim API) into DIR
   reference.py reference FILE…  for each model file, OpenSim's generalized forces at seeded random states,
                                 as JSON on stdout
+  reference.py mot MODEL MOT    OpenSim's reading of a motion on a model: the columns that are no coordinate,
+                                and the first and last rows in SI (degrees converted by the coordinates' types)
 
 States are given as coordinate values q (rad or m), their rates q' and second derivatives q'' (the
 coordinates' own time derivatives). OpenSim's ball and free joints use angular velocities as speeds u, so
@@ -313,8 +315,26 @@ def reference(files):
     json.dump(out, sys.stdout, indent=1)
 
 
+def motion(model, mot):
+    m = osim.Model(model)
+    m.initSystem()
+    storage = osim.Storage(mot)
+    m.getSimbodyEngine().convertDegreesToRadians(storage)
+    columns = storage.getColumnLabels()
+    labels = [columns.get(i) for i in range(1, columns.getSize())]
+    cs = m.getCoordinateSet()
+    rows = []
+    for k in (0, storage.getSize() - 1):
+        v = storage.getStateVector(k).getData()
+        rows.append([v.get(i) for i in range(v.getSize())])
+    out = {"labels": labels, "missing": [l for l in labels if not cs.contains(l)], "first": rows[0], "last": rows[1]}
+    json.dump(out, sys.stdout)
+
+
 if __name__ == "__main__":
     if sys.argv[1] == "build":
         build(sys.argv[2])
+    elif sys.argv[1] == "mot":
+        motion(sys.argv[2], sys.argv[3])
     else:
         reference(sys.argv[2:])
