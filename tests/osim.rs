@@ -314,6 +314,29 @@ fn export_reads_back_with_the_same_dynamics() {
     assert!((&t0 - &t1).amax() < 1e-9 * t0.amax(), "{t0} {t1}");
 }
 
+/// A frame in a body's `<components>` (its socket `..`, the body) carries a marker.
+#[test]
+fn a_marker_on_a_frame_of_a_body() {
+    let frame = "<components><PhysicalOffsetFrame name=\"head_top\"><socket_parent>..</socket_parent>\
+        <translation>0 0.2 0</translation><orientation>0 0 1.5707963267948966</orientation></PhysicalOffsetFrame></components>";
+    let marker = "<Marker name=\"vertex\"><socket_parent_frame>/bodyset/head/head_top</socket_parent_frame>\
+        <location>0.01 0 0</location></Marker>";
+    let text = broken("<Body name=\"head\">", &format!("<Body name=\"head\">{frame}")).replacen(
+        "<Marker name=\"R.ASIS\">",
+        &format!("{marker}<Marker name=\"R.ASIS\">"),
+        1,
+    );
+    let m = osim::parse(&text, "frames.osim").unwrap_or_else(|e| panic!("{e}")).model;
+    let f = &m.frames[m.frame_index("vertex").expect("vertex")];
+    assert_eq!(m.bodies[f.body].name, "head");
+    // Rz(90°) turns the marker's x into the body's y: (0, 0.21, 0).
+    assert!(
+        (f.placement.translation - mintorque::spatial::Vec3::new(0.0, 0.21, 0.0)).norm() < 1e-12,
+        "{:?}",
+        f.placement.translation
+    );
+}
+
 /// The skeleton's text with `from` replaced by `to` (which must occur).
 fn broken(from: &str, to: &str) -> String {
     let text = std::fs::read_to_string(data_dir().join("skeleton.osim")).expect("read");

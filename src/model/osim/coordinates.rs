@@ -117,7 +117,14 @@ impl Coordinates {
         for (k, d) in self.chain.iter().enumerate() {
             tau[d.coordinate] += d.function.eval(q[d.coordinate]).1 * tau_chain[k];
         }
-        Ok(tau)
+        match tau.iter().position(|t| !t.is_finite()) {
+            Some(c) => Err(Error::input(
+                "inverse_dynamics",
+                format!("coordinate \"{}\"", self.coordinates[c].name),
+                "the generalized force is not a finite number (a coupling function overflows at this state?)",
+            )),
+            None => Ok(tau),
+        }
     }
 
     fn check_len(&self, x: &[f64], what: &str) -> Result<()> {

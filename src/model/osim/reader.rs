@@ -153,12 +153,20 @@ impl<'i> Cx<'_, 'i> {
         depth: usize,
     ) -> Result<(usize, Transform)> {
         let last = path.rsplit('/').find(|s| !s.is_empty() && *s != ".." && *s != ".").unwrap_or("");
-        let frames = self.child(owner, "frames").or_else(|| self.child(owner, "components"));
-        let offset = frames.and_then(|f| self.elements(f).find(|n| n.attribute("name") == Some(last)));
-        if let (Some(frame), true) = (offset, depth < 16) {
+        // `..` from a body's own frame is the body.
+        let owner_name = owner.attribute("name").unwrap_or("");
+        if last.is_empty() && owner.tag_name().name() == "Body" {
+            return Ok((bodies.iter().position(|b| b.name == owner_name).unwrap_or(0), Transform::IDENTITY));
+        }
+        // A frame of the owner (a joint's <frames>), else one in a body's <components>.
+        let frame = self.frame_in(owner, last).map(|f| (owner, f)).or_else(|| {
+            let body_nodes = self.doc.descendants().filter(|n| n.tag_name().name() == "Body");
+            body_nodes.filter_map(|b| self.frame_in(b, last).map(|f| (b, f))).next()
+        });
+        if let (Some((frame_owner, frame)), true) = (frame, depth < 16) {
             let e = format!("{what} frame \"{last}\"");
             let parent_path = self.text(frame, "socket_parent").ok_or_else(|| self.err(frame, &e, "has no <socket_parent>"))?;
-            let (body, in_body) = self.resolve(owner, &parent_path, &e, bodies, depth + 1)?;
+            let (body, in_body) = self.resolve(frame_owner, &parent_path, &e, bodies, depth + 1)?;
             return Ok((body, in_body.compose(&self.offset(frame, &e)?)));
         }
         if let Some(b) = bodies.iter().position(|b| b.name == last) {
@@ -166,6 +174,14 @@ impl<'i> Cx<'_, 'i> {
         }
         let known: Vec<&str> = bodies.iter().map(|b| b.name.as_str()).collect();
         Err(self.err(owner, what, unknown_name("frame or body", last, &known, |n| format!("\"{n}\""))))
+    }
+
+    /// The `PhysicalOffsetFrame` called `name` in `node`'s `<frames>` or `<components>`.
+    fn frame_in<'n>(&self, node: Node<'n, 'i>, name: &str) -> Option<Node<'n, 'i>> {
+        let lists = self.elements(node).filter(|c| matches!(c.tag_name().name(), "frames" | "components"));
+        lists
+            .flat_map(|l| self.elements(l))
+            .find(|f| f.tag_name().name() == "PhysicalOffsetFrame" && f.attribute("name") == Some(name))
     }
 
     /// A `PhysicalOffsetFrame`'s `translation` (m) and `orientation`: body-fixed X-Y-Z Euler angles (rad),
