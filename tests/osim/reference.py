@@ -198,9 +198,34 @@ def constant_rotation():
     return m
 
 
+def multi_rotation():
+    """One coordinate driving all three rotations of a CustomJoint (rotation1 itself, rotation2 and rotation3
+    through splines, like a walker knee): Simbody's FunctionBased buildHdot takes the angular velocity "after
+    the first rotation" as that of the first mobility, which here carries all three, so OpenSim's
+    velocity-product terms are off (its velocities are right)."""
+    m = osim.Model()
+    m.setName("multi_rotation")
+    m.setGravity(v3(0, -9.80665, 0))
+    thigh = add_body(m, "thigh", 8.0, (0.0, -0.2, 0.0), (0.12, 0.03, 0.12), (0.0, 0.0, 0.0))
+    shank = add_body(m, "shank", 3.5, (0.02, -0.2, 0.01), (0.05, 0.006, 0.05), (0.0, 0.0, 0.0))
+    m.addJoint(osim.PinJoint("hip", m.getGround(), v3(0, 1, 0), v3(0, 0, 0), thigh, v3(0, 0, 0), v3(0, 0, 0)))
+    xs = [-2.0 + 0.25 * k for k in range(11)]
+    st = osim.SpatialTransform()
+    axis(st, 0, "knee", (0, 0, 1), osim.LinearFunction(1, 0))
+    axis(st, 1, "knee", (1, 0, 0), spline(xs, lambda q: 0.3 * math.sin(q)))
+    axis(st, 2, "knee", (0, 1, 0), spline(xs, lambda q: 0.25 * q + 0.05 * q * q))
+    axis(st, 3, "knee", (1, 0, 0), spline(xs, lambda q: 0.01 * q))
+    axis(st, 4, None, (0, 1, 0), osim.Constant(-0.4))
+    axis(st, 5, None, (0, 0, 1), osim.Constant(0))
+    m.addJoint(osim.CustomJoint("knee", thigh, v3(0, 0, 0), v3(0, 0, 0), shank, v3(0, 0, 0), v3(0, 0, 0), st))
+    m.finalizeConnections()
+    set_range(m, "knee", -1.9, 0.4)
+    return m
+
+
 def build(out):
     os.makedirs(out, exist_ok=True)
-    models = (("skeleton.osim", skeleton), ("coupled_legs.osim", coupled_legs), ("constant_rotation.osim", constant_rotation))
+    models = (("skeleton.osim", skeleton), ("coupled_legs.osim", coupled_legs), ("constant_rotation.osim", constant_rotation), ("multi_rotation.osim", multi_rotation))
     for name, make in models:
         m = make()
         m.initSystem()
@@ -291,6 +316,10 @@ def reference(files):
     for path in files:
         name = os.path.basename(path)
         m = osim.Model(path)
+        # The skeleton only: no muscle's passive force, no actuator.
+        forces = m.updForceSet()
+        for i in range(forces.getSize()):
+            forces.get(i).set_appliesForce(False)
         s = m.initSystem()
         matter = m.getMatterSubsystem()
         solver = osim.InverseDynamicsSolver(m)

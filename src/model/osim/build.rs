@@ -2,6 +2,7 @@
 //! massless bodies (the last carrying the OpenSim body), its constant steps fold into the next placement,
 //! and a joint with no moving step (a WeldJoint) merges its body into the parent's.
 
+use super::function::Function;
 use super::joints::Drive;
 use super::reader::{OsimJoint, Parsed};
 use super::{ChainDof, Coordinates};
@@ -120,6 +121,15 @@ fn add_joint(
                 continue;
             }
         };
+        // s·q + c with s = ±1: the constant step c (rotations about one axis commute), then the coordinate
+        // itself about s·axis.
+        let (function, axis) = match function.unit_affine() {
+            Some((sign, offset)) => {
+                pending = pending.compose(&joint_transform(kind, &element.axis, offset));
+                (Function::Linear { slope: 1.0, intercept: 0.0 }, element.axis * sign)
+            }
+            None => (function.clone(), element.axis),
+        };
         let c = first + local;
         let coordinate = &j.coordinates[*local];
         // The coordinate itself drives its first identity step; any other step is a coupled DOF of its own.
@@ -134,14 +144,14 @@ fn add_joint(
             kind,
             parent: body,
             placement: pending,
-            axis: element.axis,
+            axis,
             limits,
             passive: Passive::default(),
             group: group.clone(),
         };
         let body_name = if Some(&e) == moving.last() { child_name.to_string() } else { name };
         body = model.add_body(joint, Body { name: body_name, inertia: Inertia::ZERO, shapes: vec![] });
-        chain.push(ChainDof { coordinate: c, function: function.clone() });
+        chain.push(ChainDof { coordinate: c, function });
         pending = Transform::IDENTITY;
     }
     (body, pending.compose(&j.child.1.inverse()))

@@ -38,6 +38,18 @@ impl Function {
         }
     }
 
+    /// `f(q) = s·q + c` with `s = ±1`: `Some((s, c))`. Such an axis is the coordinate itself about (or
+    /// along) `s·axis`, after a constant step `c`.
+    pub fn unit_affine(&self) -> Option<(f64, f64)> {
+        let unit = |s: f64, c: f64| (s.abs() == 1.0).then_some((s, c));
+        match self {
+            Function::Linear { slope, intercept } => unit(*slope, *intercept),
+            Function::Polynomial(c) if c.len() == 2 => unit(c[0], c[1]),
+            Function::Multiplier { scale, inner } => inner.unit_affine().and_then(|(s, c)| unit(scale * s, scale * c)),
+            _ => None,
+        }
+    }
+
     /// A function that does not depend on `q` (`Some(value)`).
     pub fn constant_value(&self) -> Option<f64> {
         match self {

@@ -4,8 +4,9 @@
 //! radians (coordinate values and ranges included).
 //!
 //! Each OpenSim joint becomes a chain of revolute/prismatic joints ([`joints`]: which steps, in which
-//! frames). A CustomJoint axis driven by a function other than the coordinate itself (a knee whose
-//! translations follow its flexion through a SimmSpline) is a DOF of its own in the chain, and
+//! frames). An axis driven by `±q + c` is the coordinate itself (about a flipped axis, after a constant
+//! step); one driven by any other function of it (a knee whose translations follow its flexion through a
+//! SimmSpline) is a DOF of its own in the chain, and
 //! [`Coordinates`] maps the coordinates to the chain (`q_chain = φ(q)`), with the coordinates' exact inverse
 //! dynamics ([`Coordinates::inverse_dynamics`]). Such a model is *coupled*: [`load_model`] (what
 //! `load_any` and the planner use) refuses it. A body's frame in the model is its joint's child frame
