@@ -56,7 +56,6 @@ pub(super) fn build(parsed: Parsed, origin: &str) -> Result<(Model, Coordinates,
         model.bodies[body].inertia = merged;
         if model.bodies[body].name != child.name {
             model.frames.push(Frame { name: child.name.clone(), body, placement: in_body });
-            lines.push(child.line);
         } else if in_body != Transform::IDENTITY {
             ignored.push(format!(
                 "body \"{}\": its frame here is its joint's child frame (the body's own frame sits at {:?} m in it)",

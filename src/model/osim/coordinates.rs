@@ -39,7 +39,8 @@ pub struct ChainDof {
 /// The file's coordinates and the chain DOF each model DOF is (`chain[k]` is the model's DOF `k`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Coordinates {
-    /// In file order (joint by joint).
+    /// Joint by joint, parents first (the file's order when it lists parents first, as OpenSim writes);
+    /// match them by name.
     pub coordinates: Vec<Coordinate>,
     /// One per model DOF, in `q` order.
     pub chain: Vec<ChainDof>,
