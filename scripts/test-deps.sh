@@ -8,3 +8,5 @@ python3 -m pip install --quiet --disable-pip-version-check --root-user-action=ig
 python3 -m pip install --quiet --disable-pip-version-check --root-user-action=ignore 'pyarrow==21.0.0'
 # tests/mjcf.rs checks the MJCF reader against MuJoCo's own inverse dynamics (a venv, target/mujoco-venv).
 bash "$(dirname "$0")/mujoco-venv.sh"
+# tests/osim.rs compares the .osim import with OpenSim 4.6 itself, in its own venv.
+bash "$(dirname "$0")/opensim-venv.sh"

@@ -77,7 +77,7 @@ enum Command {
     Export {
         /// The plan directory.
         dir: PathBuf,
-        /// bvh (Blender, MotionBuilder), gltf (binary .glb), mot (OpenSim), csv.
+        /// bvh (Blender, MotionBuilder), gltf (binary .glb), mot (OpenSim), osim (the figure, for OpenSim), csv.
         #[arg(long)]
         format: String,
         /// Output file (default: inside DIR, named after the model).
@@ -93,10 +93,10 @@ enum Command {
         #[arg(long)]
         filmstrip: Option<String>,
     },
-    /// Write a figure — a built-in human or a model file — as URDF (for any URDF viewer) or as a figure
-    /// file (TOML) to edit.
+    /// Write a figure — a built-in human or a model file — as URDF (for any URDF viewer), as a figure
+    /// file (TOML) to edit, or as an OpenSim model (.osim).
     Figure {
-        /// A URDF, MJCF (MuJoCo) or figure file to convert.
+        /// A URDF, MJCF (MuJoCo), figure file or (uncoupled) OpenSim .osim to convert.
         model: Option<PathBuf>,
         /// A built-in human structure instead: sagittal, free_arms, hanging, push_up.
         #[arg(long, conflicts_with = "model")]
@@ -107,7 +107,7 @@ enum Command {
         /// Body mass of the built-in human (kg, 20–250).
         #[arg(long, default_value_t = 81.0)]
         mass: f64,
-        /// Output file: .urdf for URDF, .toml for a figure file.
+        /// Output file: .urdf for URDF, .toml for a figure file, .osim for OpenSim.
         #[arg(long, short)]
         out: PathBuf,
         #[command(flatten)]
@@ -127,7 +127,7 @@ enum Command {
     /// Inverse dynamics, its derivatives, H(q) and forward dynamics of a model at the states of a file
     /// (the reference data's JSON format), printed as JSON in the file's joint order.
     Dynamics {
-        /// A URDF (.urdf) or figure file (.toml).
+        /// A URDF (.urdf), figure file (.toml) or uncoupled OpenSim model (.osim).
         model: PathBuf,
         /// States file: JSON with `joints[].name` and `states[]` of `q`, `v`, `a` (and `tau_rand`).
         #[arg(long, required_unless_present = "bench")]
@@ -186,6 +186,12 @@ fn load_model(path: &Path, read: ModelArgs) -> Result<mintorque::Model> {
         MimicArg::Refuse => Mimic::Refuse,
         MimicArg::Independent => Mimic::Independent,
     };
+    if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("osim")) {
+        // An OpenSim file: say what of it is not modelled (muscles, constraints …).
+        let osim = mintorque::model::osim::load(path)?;
+        osim.ignored.iter().for_each(|note| eprintln!("note: {}: ignored {note}", path.display()));
+        return Ok(osim.into_model(&path.display().to_string())?);
+    }
     mintorque::model::load_any_with(path, Options { mimic }).map_err(|e| match &e {
         mintorque::Error::Model { element, .. } if element.ends_with("<mimic>") => {
             anyhow::Error::new(e).context("pass `--mimic independent` to read a <mimic> joint as an independent joint")
@@ -263,7 +269,7 @@ fn run_export(dir: &Path, format: &str, out: Option<PathBuf>) -> Result<()> {
 }
 
 fn run_figure(model: Option<PathBuf>, read: ModelArgs, human: Option<String>, stature: f64, mass: f64, out: &Path) -> Result<()> {
-    use mintorque::model::{figure, human as jack, urdf_export};
+    use mintorque::model::{figure, human as jack, osim, urdf_export};
     let model = match (model, human) {
         (Some(path), None) => load_model(&path, read)?,
         (None, Some(name)) => {
@@ -274,7 +280,8 @@ fn run_figure(model: Option<PathBuf>, read: ModelArgs, human: Option<String>, st
     let text = match out.extension().and_then(|e| e.to_str()) {
         Some("urdf") | Some("xml") => urdf_export::to_urdf(&model),
         Some("toml") => figure::to_toml(&model),
-        _ => anyhow::bail!("{}: the output must end in .urdf or .toml", out.display()),
+        Some("osim") => osim::to_osim(&model),
+        _ => anyhow::bail!("{}: the output must end in .urdf, .toml or .osim", out.display()),
     };
     plan_dir::write_file(out, text.as_bytes())?;
     println!("wrote {} ({} joints)", out.display(), model.nv());

@@ -15,6 +15,7 @@ pub mod floating;
 pub mod human;
 pub mod lock;
 pub mod mjcf;
+pub mod osim;
 pub mod toml_doc;
 pub mod urdf;
 pub mod urdf_export;
@@ -26,8 +27,9 @@ use crate::spatial::{Inertia, Transform, Vec3};
 use std::path::Path;
 
 /// Reads a model file of any format, chosen by extension: `.urdf` for URDF, `.xml` for URDF or MuJoCo's
-/// MJCF (by the root element, `<robot>` or `<mujoco>`), `.toml` for a figure file (`docs/figure-file.md`).
-/// What an MJCF file has and the model does not is printed on stderr as warnings.
+/// MJCF (by the root element, `<robot>` or `<mujoco>`), `.toml` for a figure file (`docs/figure-file.md`),
+/// `.osim` for OpenSim (uncoupled models only, [`osim::load_model`]). What an MJCF file has and the model
+/// does not is printed on stderr as warnings.
 pub fn load_any(path: &Path) -> Result<Model> {
     load_any_with(path, urdf::Options::default())
 }
@@ -45,11 +47,12 @@ pub fn load_any_with(path: &Path, options: urdf::Options) -> Result<Model> {
         }
         Some("urdf" | "xml") => urdf::load_with(path, options),
         Some("toml") => figure::load(path),
+        Some("osim") => osim::load_model(path),
         other => Err(Error::model(
             path.display().to_string(),
             "file name",
             format!(
-                "cannot tell the model format from the extension {}: use .urdf or .xml for URDF, .xml for MJCF, .toml for a figure file",
+                "cannot tell the model format from the extension {}: use .urdf or .xml for URDF, .xml for MJCF, .toml for a figure file, .osim for OpenSim",
                 other.map_or("(none)".to_string(), |e| format!(".{e}"))
             ),
         )),

@@ -172,8 +172,8 @@ fn num(x: f64) -> String {
     }
 }
 
-/// Escapes text for an XML attribute value.
-fn xml(s: &str) -> String {
+/// Escapes text for an XML attribute value (or element text); the `.osim` writer shares it.
+pub(crate) fn xml(s: &str) -> String {
     let mut out = String::with_capacity(s.len());
     for c in s.chars() {
         match c {

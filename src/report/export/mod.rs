@@ -1,5 +1,5 @@
 //! A planned motion in the formats other tools read: BVH (animation packages, Blender), glTF 2.0 binary
-//! (viewers, game engines, the web), OpenSim's `.mot` (biomechanics) and CSV (spreadsheets, scripts).
+//! (viewers, game engines, the web), OpenSim's `.mot` (biomechanics) with the figure as an `.osim` model for it, and CSV (spreadsheets, scripts).
 //! Each exporter takes the model and the [`PlanRecord`] of a plan directory and returns the file's name
 //! and bytes; writing them is `crate::plan_dir`'s.
 
@@ -25,11 +25,14 @@ pub enum Format {
     Mot,
     /// The trajectory as CSV (`.csv`): q, q̇, q̈ and τ of every joint.
     Csv,
+    /// The plan's figure as an OpenSim model (`.osim`), coordinates named after the joints: the `.mot` plays
+    /// on it.
+    Osim,
 }
 
 impl Format {
     /// Every format, in the order the CLI lists them.
-    pub const ALL: [Format; 4] = [Format::Bvh, Format::Gltf, Format::Mot, Format::Csv];
+    pub const ALL: [Format; 5] = [Format::Bvh, Format::Gltf, Format::Mot, Format::Csv, Format::Osim];
 
     /// The format's name on the command line, also its file extension.
     pub fn name(&self) -> &'static str {
@@ -38,6 +41,7 @@ impl Format {
             Format::Gltf => "gltf",
             Format::Mot => "mot",
             Format::Csv => "csv",
+            Format::Osim => "osim",
         }
     }
 
@@ -50,7 +54,7 @@ impl Format {
     }
 
     /// Every format's name, in [`Format::ALL`] order.
-    pub fn names() -> [&'static str; 4] {
+    pub fn names() -> [&'static str; 5] {
         Format::ALL.map(|f| f.name())
     }
 
@@ -92,6 +96,7 @@ pub fn export(model: &Model, record: &PlanRecord, format: Format) -> Result<(Str
         Format::Gltf => gltf::glb(model, record)?,
         Format::Mot => mot::mot(model, record).into_bytes(),
         Format::Csv => csv::csv(model, record).into_bytes(),
+        Format::Osim => crate::model::osim::to_osim(model).into_bytes(),
     };
     Ok((format!("{}.{}", file_stem(&record.model_name), format.extension()), bytes))
 }

@@ -1,0 +1,141 @@
+//! OpenSim's coordinates and the map to the model's chain of 1-DOF joints, `q_chain = φ(q)`: each chain
+//! DOF `k` is `φₖ(q_c(k))` of one coordinate (the identity where the coordinate drives the step itself; a
+//! spline where a knee's translation follows its flexion). Inverse dynamics of the coordinates then follows
+//! by virtual work from the chain's: with `G = ∂φ/∂q`,
+//! `q̇_chain = G q̇`, `q̈_chain = G q̈ + φ″ q̇²`, `τ = Gᵀ τ_chain(q_chain, q̇_chain, q̈_chain)`.
+
+use super::function::Function;
+use crate::dynamics::{rnea::rnea, Data};
+use crate::error::{Error, Result};
+use crate::model::Model;
+use nalgebra::DMatrix;
+
+/// An OpenSim coordinate: a generalized coordinate of the file (rad for rotations, m for translations).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Coordinate {
+    /// Its name: the joint name of the model when it drives a step itself.
+    pub name: String,
+    /// The OpenSim joint that owns it.
+    pub joint: String,
+    /// `default_value` (rad or m).
+    pub default_value: f64,
+    /// `range` (rad or m; infinite when the file gives none).
+    pub range: (f64, f64),
+    /// Whether OpenSim clamps it to its range (then the model's joint has these limits).
+    pub clamped: bool,
+    /// Whether the file locks it (kept free in the model; reported).
+    pub locked: bool,
+}
+
+/// One DOF of the model's chain: `q_chain = function(q[coordinate])`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ChainDof {
+    /// Index into [`Coordinates::coordinates`].
+    pub coordinate: usize,
+    /// `φ` (its derivatives give `G` and the `φ″ q̇²` term).
+    pub function: Function,
+}
+
+/// The file's coordinates and the chain DOF each model DOF is (`chain[k]` is the model's DOF `k`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Coordinates {
+    /// Joint by joint, parents first (the file's order when it lists parents first, as OpenSim writes);
+    /// match them by name.
+    pub coordinates: Vec<Coordinate>,
+    /// One per model DOF, in `q` order.
+    pub chain: Vec<ChainDof>,
+}
+
+impl Coordinates {
+    /// Number of coordinates.
+    pub fn len(&self) -> usize {
+        self.coordinates.len()
+    }
+
+    /// Whether there are none.
+    pub fn is_empty(&self) -> bool {
+        self.coordinates.is_empty()
+    }
+
+    /// The coordinates' names, in their order.
+    pub fn names(&self) -> Vec<&str> {
+        self.coordinates.iter().map(|c| c.name.as_str()).collect()
+    }
+
+    /// Whether some model DOF is not simply a coordinate of its own: a coupling (or a coordinate that drives
+    /// no step, or drives several).
+    pub fn is_coupled(&self) -> bool {
+        let mut seen = vec![0usize; self.len()];
+        for d in &self.chain {
+            if !d.function.is_identity() {
+                return true;
+            }
+            seen[d.coordinate] += 1;
+        }
+        seen.iter().any(|&n| n != 1)
+    }
+
+    /// The chain's state from the coordinates': `q_chain = φ(q)`, `q̇_chain = φ′ q̇`, `q̈_chain = φ′ q̈ + φ″ q̇²`.
+    pub fn chain_state(&self, q: &[f64], v: &[f64], a: &[f64]) -> Result<(Vec<f64>, Vec<f64>, Vec<f64>)> {
+        self.check_len(q, "q")?;
+        self.check_len(v, "v")?;
+        self.check_len(a, "a")?;
+        let mut out = (Vec::new(), Vec::new(), Vec::new());
+        for d in &self.chain {
+            let c = d.coordinate;
+            let (f, d1, d2) = d.function.eval(q[c]);
+            out.0.push(f);
+            out.1.push(d1 * v[c]);
+            out.2.push(d1 * a[c] + d2 * v[c] * v[c]);
+        }
+        Ok(out)
+    }
+
+    /// `G = ∂q_chain/∂q` (model DOFs × coordinates).
+    pub fn jacobian(&self, q: &[f64]) -> Result<DMatrix<f64>> {
+        self.check_len(q, "q")?;
+        let mut g = DMatrix::zeros(self.chain.len(), self.len());
+        for (k, d) in self.chain.iter().enumerate() {
+            g[(k, d.coordinate)] = d.function.eval(q[d.coordinate]).1;
+        }
+        Ok(g)
+    }
+
+    /// The generalized forces of the coordinates (N·m or N) at `(q, q̇, q̈)` under the model's gravity:
+    /// `τ = Gᵀ τ_chain`, `τ_chain` the model's inverse dynamics at the chain's state.
+    pub fn inverse_dynamics(&self, model: &Model, data: &mut Data, q: &[f64], v: &[f64], a: &[f64]) -> Result<Vec<f64>> {
+        if model.nv() != self.chain.len() {
+            return Err(Error::input(
+                "inverse_dynamics",
+                "model",
+                format!("has {} DOF, the coordinates' chain {}", model.nv(), self.chain.len()),
+            ));
+        }
+        let (qc, vc, ac) = self.chain_state(q, v, a)?;
+        let tau_chain = rnea(model, data, &qc, &vc, &ac, &model.gravity, None);
+        // τ_c = Σ_k G_kc τ_chain,k (G has one entry per chain DOF).
+        let mut tau = vec![0.0; self.len()];
+        for (k, d) in self.chain.iter().enumerate() {
+            tau[d.coordinate] += d.function.eval(q[d.coordinate]).1 * tau_chain[k];
+        }
+        match tau.iter().position(|t| !t.is_finite()) {
+            Some(c) => Err(Error::input(
+                "inverse_dynamics",
+                format!("coordinate \"{}\"", self.coordinates[c].name),
+                "the generalized force is not a finite number (a coupling function overflows at this state?)",
+            )),
+            None => Ok(tau),
+        }
+    }
+
+    fn check_len(&self, x: &[f64], what: &str) -> Result<()> {
+        if x.len() != self.len() || !x.iter().all(|v| v.is_finite()) {
+            return Err(Error::input(
+                "coordinates",
+                what,
+                format!("needs {} finite values (one per coordinate: {}), got {}", self.len(), self.names().join(", "), x.len()),
+            ));
+        }
+        Ok(())
+    }
+}
