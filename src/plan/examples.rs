@@ -28,6 +28,8 @@ pub const ALL: &[Example] = &[
     Example { name: "leg_lift", text: include_str!("../../examples/leg_lift.toml") },
     Example { name: "leg_lift_mars", text: include_str!("../../examples/leg_lift_mars.toml") },
     Example { name: "leg_lift_space", text: include_str!("../../examples/leg_lift_space.toml") },
+    Example { name: "lift_squat", text: include_str!("../../examples/lift_squat.toml") },
+    Example { name: "lift_stoop", text: include_str!("../../examples/lift_stoop.toml") },
     Example { name: "moon_overhead_reach", text: include_str!("../../examples/moon_overhead_reach.toml") },
     Example { name: "pendulum", text: include_str!("../../examples/pendulum.toml") },
     Example { name: "push_up", text: include_str!("../../examples/push_up.toml") },
