@@ -187,11 +187,19 @@ pub fn validate(spec: &Spec, origin: &str) -> Result<()> {
     solids::validate(spec, origin)
 }
 
-/// The objective's terms: finite, ≥ 0, one at least positive; the strength term with the torque objective.
+/// The largest weight of an objective term: beyond it the weighted squares overflow (a weight only sets
+/// the terms' ratio, so nothing needs more).
+const MAX_TERM_WEIGHT: f64 = 1e12;
+
+/// The objective's terms: finite, in [0, 10¹²], one at least positive; the strength term with the torque
+/// objective.
 fn check_terms(spec: &Spec, origin: &str) -> Result<()> {
     for (name, w) in spec.terms.named() {
-        if !(w.is_finite() && w >= 0.0) {
-            return Err(Error::task(origin, format!("objective.terms.{name}"), format!("must be a finite weight ≥ 0, got {w}")));
+        if !(w.is_finite() && (0.0..=MAX_TERM_WEIGHT).contains(&w)) {
+            let message = format!(
+                "must be a finite weight in [0, {MAX_TERM_WEIGHT:e}], got {w} (weights set the terms' ratio: scale them down together)"
+            );
+            return Err(Error::task(origin, format!("objective.terms.{name}"), message));
         }
     }
     if spec.terms.named().iter().all(|(_, w)| *w == 0.0) {
