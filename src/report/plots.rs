@@ -126,6 +126,33 @@ fn check_guess(model: &Model, guess: &[SampleRecord]) -> Result<()> {
     }
 }
 
+/// One panel's chart over time: the caption, time (s) along x, `unit` along y, a light grid.
+pub(crate) fn time_chart<'a, DB: DrawingBackend + 'a>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    caption: &str,
+    x: (f64, f64),
+    y: (f64, f64),
+    unit: &str,
+) -> Result<ChartContext<'a, DB, Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>>> {
+    let mut chart = ChartBuilder::on(area)
+        .caption(caption, ("sans-serif", 15))
+        .margin(6)
+        .x_label_area_size(34)
+        .y_label_area_size(58)
+        .build_cartesian_2d(x.0..x.1, y.0..y.1)
+        .map_err(drawing_error)?;
+    chart
+        .configure_mesh()
+        .x_desc("time (s)")
+        .y_desc(unit)
+        .x_labels(6)
+        .y_labels(5)
+        .light_line_style(WHITE.mix(0.0))
+        .draw()
+        .map_err(drawing_error)?;
+    Ok(chart)
+}
+
 pub(crate) fn drawing_error(e: impl std::fmt::Display) -> Error {
     Error::input("plots", "drawing", e.to_string())
 }
@@ -212,22 +239,7 @@ fn joint_panel<DB: DrawingBackend>(
         caption.push_str(" — initial guess off scale");
     }
     let x = time_range(record);
-    let mut chart = ChartBuilder::on(panel)
-        .caption(caption, ("sans-serif", 15))
-        .margin(6)
-        .x_label_area_size(34)
-        .y_label_area_size(58)
-        .build_cartesian_2d(x.0..x.1, y.0..y.1)
-        .map_err(drawing_error)?;
-    chart
-        .configure_mesh()
-        .x_desc("time (s)")
-        .y_desc(unit)
-        .x_labels(6)
-        .y_labels(5)
-        .light_line_style(WHITE.mix(0.0))
-        .draw()
-        .map_err(drawing_error)?;
+    let mut chart = time_chart(panel, &caption, x, y, unit)?;
     if let Some(edges) = band {
         draw_strength_band(&mut chart, x, edges, i == 0)?;
     }

@@ -6,7 +6,7 @@ use super::loads::LoadSeries;
 use super::Ergonomics;
 use crate::error::Result;
 use crate::model::Model;
-use crate::report::plots::{canvas_size, draw_legend, drawing_error, grid, padded_range, time_range, PNG_SCALE};
+use crate::report::plots::{canvas_size, draw_legend, drawing_error, grid, padded_range, time_chart, time_range, PNG_SCALE};
 use crate::report::record::PlanRecord;
 use plotters::prelude::*;
 
@@ -119,20 +119,7 @@ fn lines_svg(title: &str, record: &PlanRecord, panels: &[Panel]) -> Result<Strin
             let x = time_range(record);
             let values = panel.curves.iter().flat_map(|(_, c)| c.iter().map(|p| p.1)).chain(panel.levels.iter().map(|l| l.1));
             let y = padded_range(values);
-            let mut chart = ChartBuilder::on(area)
-                .caption(&panel.caption, ("sans-serif", 15))
-                .margin(6)
-                .x_label_area_size(34)
-                .y_label_area_size(58)
-                .build_cartesian_2d(x.0..x.1, y.0..y.1)
-                .map_err(drawing_error)?;
-            chart
-                .configure_mesh()
-                .x_desc("time (s)")
-                .y_desc(panel.unit)
-                .light_line_style(WHITE.mix(0.0))
-                .draw()
-                .map_err(drawing_error)?;
+            let mut chart = time_chart(area, &panel.caption, x, y, panel.unit)?;
             for ((label, points), colour) in panel.curves.iter().zip(COLOURS.iter().cycle()) {
                 let colour = *colour;
                 let drawn = chart.draw_series(LineSeries::new(points.clone(), colour.stroke_width(2))).map_err(drawing_error)?;
