@@ -411,3 +411,14 @@ fn plan_prints_the_tasks_warnings() {
         assert!(err.contains("warning: ") && err.contains("motion.goal") && err.contains("radians"), "{err}");
     }
 }
+
+#[test]
+fn a_closed_stdout_pipe_ends_the_command_quietly() {
+    // `mintorque examples | head -0`: the reader is gone before anything is printed. Before the fix the
+    // print panicked ("failed printing to stdout: Broken pipe").
+    let (reader, writer) = std::io::pipe().unwrap();
+    drop(reader);
+    let out = mintorque().arg("examples").stdout(writer).output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked") && !stderr.contains("Broken pipe"), "{stderr}");
+}

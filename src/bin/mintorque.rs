@@ -383,6 +383,7 @@ fn exit_code(e: &anyhow::Error) -> u8 {
 }
 
 fn main() -> ExitCode {
+    restore_sigpipe();
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         // --help and --version print to stdout and succeed; a bad argument is bad input.
@@ -397,5 +398,16 @@ fn main() -> ExitCode {
             eprintln!("error: {e:#}");
             ExitCode::from(exit_code(&e))
         }
+    }
+}
+
+/// A closed pipe on stdout (`mintorque examples | head -1`) ends the process quietly, as it does any Unix
+/// tool: Rust ignores SIGPIPE, so a print to a closed pipe would panic instead. Outputs are written to the
+/// plan directory before anything is printed, so nothing is cut short.
+fn restore_sigpipe() {
+    #[cfg(unix)]
+    // SAFETY: sets the default action of one signal before any thread starts; no handler is involved.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
 }
