@@ -336,20 +336,8 @@ fn contact_plot(record: &PlanRecord) -> Result<String> {
         for (c, panel) in body.split_evenly(layout).iter().enumerate().take(record.contacts.len()) {
             let x = time_range(record);
             let y = padded_range(record.samples.iter().flat_map(|s| s.contact_forces[c]));
-            let mut chart = ChartBuilder::on(panel)
-                .caption(format!("{} (N, world axes)", record.contacts[c].name), ("sans-serif", 15))
-                .margin(6)
-                .x_label_area_size(34)
-                .y_label_area_size(58)
-                .build_cartesian_2d(x.0..x.1, y.0..y.1)
-                .map_err(drawing_error)?;
-            chart
-                .configure_mesh()
-                .x_desc("time (s)")
-                .y_desc("N")
-                .light_line_style(WHITE.mix(0.0))
-                .draw()
-                .map_err(drawing_error)?;
+            let caption = format!("{} (N, world axes)", record.contacts[c].name);
+            let mut chart = time_chart(panel, &caption, x, y, "N")?;
             for (axis, (name, colour)) in ["x", "y", "z"].iter().zip(FORCE_COLOURS).enumerate() {
                 let points: Vec<(f64, f64)> = record.samples.iter().map(|s| (s.t, s.contact_forces[c][axis])).collect();
                 let drawn = chart.draw_series(LineSeries::new(points, colour.stroke_width(2))).map_err(drawing_error)?;

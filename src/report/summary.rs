@@ -322,11 +322,18 @@ pub fn joint_table(s: &Summary) -> String {
     let width = s.joints.iter().map(|j| j.name.len()).max().unwrap_or(5).max(5);
     let _ = writeln!(out, "{:width$}  {:>20}  {:>8}  {:>10}", "joint", "peak |τ| (N·m or N)", "at (s)", "limit");
     for j in &s.joints {
-        let limit = match (j.torque_limit_negative, j.torque_limit_positive) {
-            (Some(n), Some(p)) if n != p => format!("−{n:.1}/+{p:.1}"),
-            (n, p) => j.torque_limit.or(n).or(p).map(|l| format!("{l:.1}")).unwrap_or_else(|| "-".into()),
-        };
+        let limit = limit_text(j.torque_limit_negative, j.torque_limit_positive, j.torque_limit, "");
         let _ = writeln!(out, "{:width$}  {:>20.3}  {:>8.3}  {:>10}", j.name, j.peak_abs_torque, j.peak_time_s, limit);
     }
     out
+}
+
+/// A joint's torque limit as the tables print it: `−τ⁻/+τ⁺` where the directions differ, else the one
+/// limit (`symmetric`, or either direction's), else `-`; `unit` (if any) after the number.
+pub(crate) fn limit_text(negative: Option<f64>, positive: Option<f64>, symmetric: Option<f64>, unit: &str) -> String {
+    let unit = if unit.is_empty() { String::new() } else { format!(" {unit}") };
+    match (negative, positive) {
+        (Some(n), Some(p)) if n != p => format!("−{n:.1}/+{p:.1}{unit}"),
+        (n, p) => symmetric.or(n).or(p).map_or_else(|| "-".to_string(), |l| format!("{l:.1}{unit}")),
+    }
 }

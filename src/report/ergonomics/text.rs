@@ -2,6 +2,7 @@
 //! low back, the lifting equation and the strength model.
 
 use super::Ergonomics;
+use crate::report::summary::limit_text;
 use std::fmt::Write as _;
 
 /// A short table for the end of `mintorque plan`: one row per joint, then the totals and the intervals
@@ -16,10 +17,7 @@ pub fn text_table(e: &Ergonomics) -> String {
     );
     for j in &e.joints {
         let unit = j.torque_unit;
-        let limit = match (j.strength_limit_negative, j.strength_limit_positive) {
-            (Some(n), Some(p)) if n != p => format!("−{n:.1}/+{p:.1} {unit}"),
-            (n, p) => p.or(n).map_or_else(|| "-".to_string(), |l| format!("{l:.1} {unit}")),
-        };
+        let limit = limit_text(j.strength_limit_negative, j.strength_limit_positive, None, unit);
         let percent = j.peak_fraction_of_limit.map_or_else(|| "-".to_string(), |f| format!("{:.0}%", f * 100.0));
         let peak = format!("{:.2} {unit}", j.peak_abs_torque);
         let _ = writeln!(
