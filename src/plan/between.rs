@@ -34,6 +34,8 @@ pub struct Tolerances {
     pub centre_of_pressure_mm: f64,
     /// Two solids closer than their margin (mm, default 1: a tenth of the usual 1–2 cm margin).
     pub distance_mm: f64,
+    /// A free root's force (N) or moment (N·m) between its collocation nodes (default 1: 0.1 kg-weight).
+    pub root_force_n: f64,
 }
 
 impl Default for Tolerances {
@@ -47,6 +49,7 @@ impl Default for Tolerances {
             force_n: 1.0,
             centre_of_pressure_mm: 2.0,
             distance_mm: 1.0,
+            root_force_n: 1.0,
         }
     }
 }
@@ -62,6 +65,7 @@ impl Tolerances {
             RowKind::Force => self.force_n,
             RowKind::CentreOfPressure => self.centre_of_pressure_mm,
             RowKind::Distance => self.distance_mm,
+            RowKind::RootForce => self.root_force_n,
         }
     }
 
@@ -76,6 +80,7 @@ impl Tolerances {
             ("force_n", self.force_n),
             ("centre_of_pressure_mm", self.centre_of_pressure_mm),
             ("distance_mm", self.distance_mm),
+            ("root_force_n", self.root_force_n),
         ];
         for (name, v) in all {
             if !(v.is_finite() && v >= 0.0) {
@@ -232,7 +237,9 @@ pub fn check(spec: &Spec, x: &[f64], per_span: usize, tolerances: &Tolerances) -
 /// closure and limit nodes, without times already in `nodes`.
 pub(super) fn more_nodes(violations: &[NodeViolation], nodes: &CheckNodes) -> CheckNodes {
     let mut more = CheckNodes::default();
-    for v in violations {
+    // A free root's forces hold at their collocation nodes only (more rows would over-determine its spline):
+    // check nodes do not help them, more control points do.
+    for v in violations.iter().filter(|v| v.kind != RowKind::RootForce) {
         let closure = v.kind == RowKind::Closure;
         for &(_, t, _) in &v.spans {
             let (have, list) = if closure { (&nodes.closures, &mut more.closures) } else { (&nodes.limits, &mut more.limits) };

@@ -59,8 +59,9 @@ pub(super) fn enforce(
             || more.limits.len() + more.closures.len() == 0
         {
             Some(format!(
-                "after {rounds} round(s) of refinement ({} check nodes added)",
-                spec.check_nodes.limits.len() + spec.check_nodes.closures.len()
+                "after {rounds} round(s) of refinement ({} check nodes added){}",
+                spec.check_nodes.limits.len() + spec.check_nodes.closures.len(),
+                root_hint(&violations, spec.n_ctrl)
             ))
         } else {
             let warm = padded(&run.outcome.multipliers, &spec, &more)?;
@@ -85,6 +86,16 @@ pub(super) fn enforce(
             not_converged(&mut run.outcome, &violations, &why);
         }
         return Ok(Enforced { run, spec, violations, rounds });
+    }
+}
+
+/// What to do when a free root's forces are missed between their collocation nodes: check nodes cannot
+/// hold them (`between::more_nodes`), a finer spline can.
+fn root_hint(violations: &[NodeViolation], n_ctrl: usize) -> String {
+    if violations.iter().any(|v| v.kind == crate::plan::transcription::RowKind::RootForce) {
+        format!("; the free root's forces between its collocation nodes fall with more control points: raise discretization.control_points from {n_ctrl}")
+    } else {
+        String::new()
     }
 }
 

@@ -35,7 +35,7 @@ pub fn resolve(file: &TaskFile, base: &Path, origin: &str) -> Result<Spec> {
     let contacts = contacts(&model, &file.constraints.contact, &start, origin)?;
     close_loops(&model, &contacts, &m.close_loop_with, [&mut start, &mut goal], origin)?;
     let (objective, mut weights) = objective(&model, &file.objective, origin)?;
-    free_floating(&model, file, &frame_goals, &mut weights, origin)?;
+    free_floating(&model, file, &frame_goals, &gravity, &mut weights, origin)?;
     let initial_guess = guess::initial_guess(&model, file, (&start, &goal), base, origin)?;
     let c = &file.constraints;
     let obstacles = super::solids::obstacles(&env.obstacle, origin)?;
@@ -74,11 +74,13 @@ pub fn resolve(file: &TaskFile, base: &Path, origin: &str) -> Result<Spec> {
 /// A free-floating figure (`model.root = "free"`): its root's six generalised forces are held at zero by
 /// their effort limits of 0 and left out of the objective (weight 0). It has no ground, so neither a balance
 /// constraint nor push-only (ground) contacts; and its end pose follows from its momentum, so its goal
-/// must be a frame goal at the end (the goal posture is then solved for).
+/// must be a frame goal at the end (the goal posture is then solved for). Held by nothing under gravity it
+/// falls and cannot come to rest.
 fn free_floating(
     model: &Model,
     file: &TaskFile,
     frame_goals: &[crate::plan::FrameGoal],
+    gravity: &Vec3,
     weights: &mut [f64],
     origin: &str,
 ) -> Result<()> {
@@ -97,6 +99,13 @@ fn free_floating(
     if !frame_goals.iter().any(|g| g.t.is_none()) {
         let message = "a free-floating figure's end pose follows from its momentum: give where it is to reach as a [[motion.frame_goal]] at the end (no t), and the goal posture is solved for";
         return Err(Error::task(origin, "motion.goal", message));
+    }
+    if gravity.norm() > 0.0 && c.contact.is_empty() {
+        let message = format!(
+            "a free-floating figure held by nothing falls at {:.2} m/s² and cannot come to rest: plan it in space (gravity = \"space\"), or hold a frame with a bilateral contact",
+            gravity.norm()
+        );
+        return Err(Error::task(origin, "environment.gravity", message));
     }
     for (i, w) in weights.iter_mut().enumerate() {
         if model.is_unactuated(i) {

@@ -57,6 +57,7 @@ impl Transcription<'_> {
         if spec.contacts.is_empty() {
             return;
         }
+        let eq0 = self.contact_eq0();
         for k in 0..self.contact_nodes.t.len() {
             let basis = self.contact_nodes.basis[k];
             let w = &mut self.work;
@@ -69,7 +70,7 @@ impl Transcription<'_> {
                     point_jacobian(&self.data, &info.path, &p, &mut w.jac[c]);
                 }
                 for (m, e) in info.directions.iter().enumerate() {
-                    let row = k * self.n_eq_node + info.offset + m;
+                    let row = eq0 + k * self.n_eq_node + info.offset + m;
                     out.h[row] = e.dot(&(p - contact.target));
                     if want_jac {
                         let (d_q, rest) = w.row.split_at_mut(nv);
@@ -195,6 +196,10 @@ impl Transcription<'_> {
     /// off (mm), a joint past its limit (° or mm), a torque over it (N·m or N), a contact force pulling or
     /// outside its cone (N), the balance moment outside the support (N·m).
     pub fn violation_in_units(&self, kind: ConstraintKind, index: usize, raw: f64) -> String {
+        if kind == ConstraintKind::Equality && index < self.contact_eq0() {
+            let (_, i) = self.root.decode(index);
+            return format!("{} {} on an unactuated joint (must be 0)", num(raw.abs()), self.force_unit(i));
+        }
         if kind == ConstraintKind::Equality {
             return format!("{} mm off its target", num(raw.abs() * 1e3));
         }

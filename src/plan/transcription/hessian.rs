@@ -73,7 +73,7 @@ impl Transcription<'_> {
     pub(super) fn add_second_order_term(&mut self, x: &[f64], weights: [&[f64]; 3], target: &mut SymmetricMatrix) {
         self.set_x(x);
         for k in 0..self.n_nodes() {
-            if self.node_weights(k, weights[0], weights[2]) {
+            if self.node_weights(k, weights[0], weights[1], weights[2]) {
                 self.node_hessian(k);
                 let basis = self.nodes.basis[k];
                 self.add_mapped(&basis, 3, target);
@@ -81,7 +81,8 @@ impl Transcription<'_> {
         }
         if !self.spec.contacts.is_empty() {
             for k in 0..self.contact_nodes.t.len() {
-                let rows = &weights[1][k * self.n_eq_node..(k + 1) * self.n_eq_node];
+                let eq0 = self.contact_eq0();
+                let rows = &weights[1][eq0 + k * self.n_eq_node..eq0 + (k + 1) * self.n_eq_node];
                 if rows.iter().any(|w| *w != 0.0) {
                     let basis = self.contact_nodes.basis[k];
                     self.state_at(&basis);
@@ -108,7 +109,7 @@ impl Transcription<'_> {
     }
 
     /// `ω` and `ω_W` of node `k` from the row weights; `false` if all vanish.
-    fn node_weights(&mut self, k: usize, w_r: &[f64], w_g: &[f64]) -> bool {
+    fn node_weights(&mut self, k: usize, w_r: &[f64], w_h: &[f64], w_g: &[f64]) -> bool {
         let nv = self.layout.nv;
         let sw = self.nodes.w[k].sqrt();
         // The node residual is f(τ_l) τ_l with f constant on each side of 0 (the strength term's bound per
@@ -122,6 +123,7 @@ impl Transcription<'_> {
             self.hess.omega[l] = w_r[k * nv + l] * sw * f;
         }
         self.torque_change_weights(k, w_r);
+        self.root_weights(k, w_h);
         let h = &mut self.hess;
         h.omega_w = [0.0; 6];
         let per = self.ineq_rows.len();

@@ -28,6 +28,8 @@ pub enum RowKind {
     CentreOfPressure,
     /// Two solids at least their margin apart (mm).
     Distance,
+    /// A free root's generalised force, which must vanish (N or N·m).
+    RootForce,
 }
 
 /// One constraint row measured in physical units.
@@ -53,6 +55,12 @@ impl Transcription<'_> {
     /// `g` is the whole inequality vector of the same evaluation: a centre-of-pressure row is a moment,
     /// `f_z` times the distance beyond the edge, and `f_z` is read from the node's load row.
     pub fn measure(&self, kind: ConstraintKind, index: usize, raw: f64, g: &[f64]) -> Measured {
+        if kind == ConstraintKind::Equality && index < self.contact_eq0() {
+            let name = self.root_row_name(index);
+            let constraint = name.split(" at t = ").next().unwrap_or(&name).to_string();
+            let unit = self.force_unit(self.root.decode(index).1);
+            return Measured { constraint, kind: RowKind::RootForce, value: raw, limit: 0.0, excess: raw.abs(), unit };
+        }
         if kind == ConstraintKind::Equality {
             let name = self.constraint_name(kind, index);
             let constraint = name.split(" at t = ").next().unwrap_or(&name).to_string();
@@ -80,6 +88,11 @@ impl Transcription<'_> {
                     (RowKind::AngleLimit, "°", 180.0 / std::f64::consts::PI)
                 };
                 m(kind, q * to, limit * to, raw * to, unit)
+            }
+            // On the dense grid a free root's force is a row pair ±τ ≤ 0: |τ| over, bound 0.
+            IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) if self.spec.model.is_unactuated(i) => {
+                let tau = if matches!(row, IneqRow::UpperTorque(_)) { raw } else { -raw };
+                m(RowKind::RootForce, tau, 0.0, raw, self.force_unit(i))
             }
             IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) => {
                 let upper = matches!(row, IneqRow::UpperTorque(_));

@@ -26,6 +26,7 @@ mod measure;
 mod node;
 mod objective;
 mod problem;
+mod root;
 mod terms;
 mod values;
 
@@ -88,6 +89,8 @@ pub struct Transcription<'s> {
     work: NodeWork,
     hess: hessian::HessianWork,
     goals: goals::Goals,
+    /// A free root's zero-force rows, at one node per span (empty for a figure held by the world).
+    root: root::RootRows,
 }
 
 impl<'s> Transcription<'s> {
@@ -117,6 +120,11 @@ impl<'s> Transcription<'s> {
         append(&mut nodes, spline.grid(&spec.check_nodes.limits)?);
         append(&mut contact_nodes, spline.grid(&spec.check_nodes.closures)?);
         let mut t = Self::with_nodes(spec, spline, nodes, contact_nodes);
+        // A free root's forces: equality rows at one node per span instead of limit rows at every node.
+        let unactuated: Vec<usize> = (0..spec.model.nv()).filter(|&i| spec.model.is_unactuated(i)).collect();
+        let n_spans = t.spline.n_spans();
+        t.root = root::RootRows::one_per_span(unactuated, n_spans, spec.nodes_per_span, t.nodes.t.len());
+        t.ineq_rows.retain(|r| !matches!(r, IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) if spec.model.is_unactuated(*i)));
         // The ends and the Gauss nodes are in time order: the torque-change rows join them.
         t.terms = terms::TermWork::new(&t, ordered);
         Ok(t)
@@ -260,6 +268,7 @@ impl<'s> Transcription<'s> {
             work,
             hess: hessian::HessianWork::new(nv, n_lambda),
             goals,
+            root: root::RootRows::default(),
         };
         t.terms = terms::TermWork::new(&t, 0);
         t
@@ -308,6 +317,11 @@ impl Transcription<'_> {
     /// Loop-closure rows.
     fn n_contact_eq(&self) -> usize {
         self.contact_nodes.t.len() * self.n_eq_node
+    }
+
+    /// Where the loop closures' rows start among the equality rows (after the free root's).
+    fn contact_eq0(&self) -> usize {
+        self.root.n_rows()
     }
 
     /// Which node and which row within it an inequality index is.

@@ -9,7 +9,7 @@ impl Problem for Transcription<'_> {
         Dims {
             n: self.layout.n,
             n_res: self.terms.n_res(),
-            n_eq: self.n_contact_eq(),
+            n_eq: self.root.n_rows() + self.n_contact_eq(),
             n_ineq: nn * self.n_ineq_node() + self.goals.n_rows(),
         }
     }
@@ -17,6 +17,11 @@ impl Problem for Transcription<'_> {
     fn jacobian_patterns(&self) -> Patterns {
         let nv = self.layout.nv;
         let mut p = Patterns::default();
+        for &k in &self.root.nodes {
+            let (motion, lambda) = self.node_columns(&self.nodes.basis[k]);
+            let both: Vec<usize> = motion.iter().chain(lambda.iter()).copied().collect();
+            p.h.extend(std::iter::repeat_n(both, self.root.dofs.len()));
+        }
         for basis in &self.nodes.basis {
             let (motion, lambda) = self.node_columns(basis);
             let both: Vec<usize> = motion.iter().chain(lambda.iter()).copied().collect();
@@ -64,6 +69,7 @@ impl Problem for Transcription<'_> {
                 }
             }
             self.inequality_rows(k, want_jac, out);
+            self.root_rows(k, want_jac, out);
             self.term_rows(k, want_jac, out);
         }
         self.goal_rows(self.n_nodes() * self.n_ineq_node(), want_jac, out);
@@ -107,7 +113,10 @@ impl Problem for Transcription<'_> {
             .collect();
         // Goals in metres (like the contacts), their orientations as cosines.
         let goals = std::iter::repeat_n(1.0, self.goals.n_rows());
-        Scales { eq: vec![1.0; self.n_contact_eq()], ineq: (0..nn).flat_map(|_| per_node.iter().copied()).chain(goals).collect() }
+        // A free root's forces by the figure's weight (N, N·m per m), like its limit rows; closures in metres.
+        let root = std::iter::repeat_n(self.total_weight.max(1.0), self.root.n_rows());
+        let eq = root.chain(std::iter::repeat_n(1.0, self.n_contact_eq())).collect();
+        Scales { eq, ineq: (0..nn).flat_map(|_| per_node.iter().copied()).chain(goals).collect() }
     }
 
     fn row_name(&self, family: RowFamily, index: usize) -> String {
@@ -129,7 +138,9 @@ impl Problem for Transcription<'_> {
             ConstraintKind::Inequality if index >= self.n_nodes() * self.n_ineq_node() => {
                 self.goal_row_name(index - self.n_nodes() * self.n_ineq_node())
             }
+            ConstraintKind::Equality if index < self.contact_eq0() => self.root_row_name(index),
             ConstraintKind::Equality => {
+                let index = index - self.contact_eq0();
                 let per = self.n_eq_node.max(1);
                 let (k, m) = (index / per, index % per);
                 let c = self.contacts.iter().rposition(|c| c.offset <= m).unwrap_or(0);

@@ -211,6 +211,10 @@ fn anatomical(name: &str) -> (&str, u32) {
 }
 
 fn default_source(file: &TaskFile, model: &Model, i: usize, subject: Option<f64>) -> Source {
+    // A free root's six forces are no muscle's: they are held at zero, and have no strength.
+    if model.is_unactuated(i) {
+        return Source::None;
+    }
     let joint = &model.joints[i + 1];
     let (base, limbs) = anatomical(&joint.name);
     if let (Some(mgh), Some(k)) = (subject, JOINTS.iter().position(|j| *j == base)) {
