@@ -379,3 +379,54 @@ fn every_example_is_listed_and_parses() {
         assert!(!e.summary().is_empty());
     }
 }
+
+/// Ours, after issue 11 — a free-floating astronaut (`model.root = "free"`) reaches back for a handrail in
+/// weightlessness: nothing holds the body, so its angular momentum stays zero; the right arm's swing back
+/// carries momentum, and the rest of the body takes the opposite, turning the other way. A root held by the
+/// world (the opposite condition) would let the arm's momentum go into the support instead.
+#[test]
+fn astronaut_handrail() {
+    let r = planned("astronaut_handrail");
+    let m = &r.spec.model;
+    let goal = &r.spec.frame_goals[0];
+    let reach = (r.frame_path("r_hand").last().unwrap() - goal.position).norm();
+    assert!(reach < 0.011, "the hand ends {} mm from the rail", reach * 1e3);
+    // The bodies of the right arm: the subtree of the first right-shoulder joint.
+    let shoulder = r.joint("r_shoulder_y") + 1;
+    let in_arm = |mut b: usize| loop {
+        if b == shoulder {
+            break true;
+        }
+        if b == 0 {
+            break false;
+        }
+        b = m.joints[b].parent;
+    };
+    let mut data = Data::new(m);
+    let (mut worst_total, mut worst_arm, mut opposite) = (0.0f64, 0.0f64, true);
+    for s in &r.samples {
+        kinematics::placements(m, &mut data, &s.q);
+        kinematics::velocities(m, &mut data, &s.qd);
+        let c = kinematics::center_of_mass(m, &data, true).unwrap();
+        // Each part's angular momentum about the centre of mass: Σ (n − c × f) of its bodies' Iᵢvᵢ.
+        let (mut arm, mut rest) = (Vec3::zeros(), Vec3::zeros());
+        for b in 1..m.bodies.len() {
+            let h = data.oI[b].mul(&data.v[b]);
+            let about_c = h.n - c.cross(&h.f);
+            if in_arm(b) {
+                arm += about_c;
+            } else {
+                rest += about_c;
+            }
+        }
+        worst_total = worst_total.max((arm + rest).norm());
+        if arm.norm() > worst_arm {
+            worst_arm = arm.norm();
+            opposite = arm.dot(&rest) < 0.0;
+        }
+    }
+    println!("handrail: the arm's angular momentum peaks at {worst_arm:.3} N·m·s, the whole body's stays ≤ {worst_total:.4}");
+    assert!(worst_arm > 0.1, "the arm barely moves: {worst_arm} N·m·s");
+    assert!(worst_total < 0.05 * worst_arm, "momentum not conserved: {worst_total} of the arm's {worst_arm} N·m·s");
+    assert!(opposite, "the rest of the body does not turn against the arm");
+}
