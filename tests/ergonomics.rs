@@ -339,3 +339,52 @@ fn contact_and_unactuated_dofs_have_no_strength_and_the_whole_bodys_flexion_axes
     assert!(one_limb(&s[0], 0) && one_limb(&s[1], 1) && one_limb(&s[2], 2), "{s:?}");
     assert!(matches!(s[3], Source::Constant { .. }) && s[4] == Source::None && s[5] == Source::None, "{s:?}");
 }
+
+/// The plan of the task `text` (named `name` in messages), converged, sampled at 100 Hz.
+fn plan_text(text: &str, name: &str) -> (PlanRecord, mintorque::Model) {
+    let mut task = Task::parse(text, Path::new(name)).unwrap();
+    let planned = task.plan(&mut |_| {}).unwrap();
+    assert!(planned.converged(), "{name}: {}", planned.outcome.reason);
+    let spec = &task.spec;
+    let samples = plan::sample(spec, &planned, &mintorque::report::sample_times(spec.duration, 100.0)).unwrap();
+    (PlanRecord::new(spec, &planned, &samples), spec.model.clone())
+}
+
+#[test]
+fn a_suitcase_in_one_hand_bends_the_spine_towards_the_free_side_unlike_the_same_load_in_both() {
+    let one = std::fs::read_to_string(example("one_hand_carry")).unwrap();
+    let payload = "[[environment.payload]]        # the suitcase, in the right hand\nframe = \"r_hand\"\nmass = 10.0";
+    assert!(one.contains(payload));
+    let halves = "[[environment.payload]]\nframe = \"l_hand\"\nmass = 5.0\n\n[[environment.payload]]\nframe = \"r_hand\"\nmass = 5.0";
+    let both = one.replace(payload, halves);
+    let (a, model) = plan_text(&one, "one_hand_carry.toml");
+    let (b, model_b) = plan_text(&both, "two_hand_carry.toml");
+    let dof = |name: &str| model.dof_index(name).unwrap();
+    let (bend, free_arm, loaded_arm) = (dof("lumbar_x"), dof("l_shoulder_x"), dof("r_shoulder_x"));
+    // The lateral bending moment at the lumbar joint (its load's moment along the lumbar_x axis, +: towards
+    // the left) at the held start: the 10 kg in the right hand, about 0.2 m right of the spine, needs
+    // ≈ 20 N·m bending left; shared by both hands it needs none.
+    // (Each plan with its own model: the payloads are part of the hands' inertia.)
+    let lateral = |r: &PlanRecord, m: &mintorque::Model| {
+        let series = loads::series(m, r, &[]).unwrap();
+        series[0][bend].moment.dot(&m.joints[bend + 1].axis)
+    };
+    let (m_one, m_both) = (lateral(&a, &model), lateral(&b, &model_b));
+    eprintln!("lateral lumbar moment at the start: one hand {m_one:.2} N·m, both hands {m_both:.3} N·m");
+    assert!(m_one > 12.0 && m_both.abs() < 0.05 * m_one, "one hand {m_one} N·m, both {m_both} N·m");
+    // Over the hold the one-hand plan leans the lower spine towards the free side and lifts the free arm
+    // out (a counterweight); with the load shared, the spine stays straight and neither arm moves out.
+    let most = |r: &PlanRecord, i: usize| r.samples.iter().map(|s| s.q[i].to_degrees()).fold(f64::MIN, f64::max);
+    let widest = |r: &PlanRecord, i: usize| r.samples.iter().map(|s| s.q[i].to_degrees().abs()).fold(0.0, f64::max);
+    eprintln!(
+        "one hand: lumbar bends ≤ {:.1}°, free arm out ≤ {:.1}°, loaded arm ≤ {:.1}°; both hands: lumbar ≤ {:.2}°, arms ≤ {:.2}°/{:.2}°",
+        most(&a, bend),
+        most(&a, free_arm),
+        most(&a, loaded_arm),
+        widest(&b, bend),
+        widest(&b, free_arm),
+        widest(&b, loaded_arm)
+    );
+    assert!(most(&a, bend) > 10.0 && most(&a, free_arm) > 5.0 && most(&a, loaded_arm) < 1.0);
+    assert!(widest(&b, bend) < 1.0 && widest(&b, free_arm) < 1.0 && widest(&b, loaded_arm) < 1.0);
+}
