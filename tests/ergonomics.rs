@@ -355,7 +355,8 @@ fn a_suitcase_in_one_hand_bends_the_spine_towards_the_free_side_unlike_the_same_
     let one = std::fs::read_to_string(example("one_hand_carry")).unwrap();
     let payload = "[[environment.payload]]        # the suitcase, in the right hand\nframe = \"r_hand\"\nmass = 10.0";
     assert!(one.contains(payload));
-    let halves = "[[environment.payload]]\nframe = \"l_hand\"\nmass = 5.0\n\n[[environment.payload]]\nframe = \"r_hand\"\nmass = 5.0";
+    let halves =
+        "[[environment.payload]]\nframe = \"l_hand\"\nmass = 5.0\n\n[[environment.payload]]\nframe = \"r_hand\"\nmass = 5.0";
     let both = one.replace(payload, halves);
     let (a, model) = plan_text(&one, "one_hand_carry.toml");
     let (b, model_b) = plan_text(&both, "two_hand_carry.toml");
