@@ -247,7 +247,7 @@ fn edited(name: &str, edit: impl Fn(String) -> String) -> std::path::PathBuf {
 fn bad_ergonomic_input_is_refused_naming_the_file_and_field() {
     let out = std::env::temp_dir().join(format!("mintorque-ergonomics-out-{}", std::process::id()));
     type Edit = Box<dyn Fn(String) -> String>;
-    let cases: [(&str, Edit, &[&str]); 5] = [
+    let cases: [(&str, Edit, &[&str]); 8] = [
         ("no_frequency.toml", Box::new(|t: String| t.replace("frequency_per_min = 1.0", "")), &["frequency_per_min"]),
         (
             "no_payload.toml",
@@ -266,6 +266,25 @@ fn bad_ergonomic_input_is_refused_naming_the_file_and_field() {
             "one_direction.toml",
             Box::new(|t: String| t + "\n[ergonomics.strength.elbow]\nsource = \"constant\"\npositive_nm = 70.0\n"),
             &["ergonomics.strength.elbow.negative_nm", "both directions"],
+        ),
+        (
+            "misspelt_joint.toml",
+            Box::new(|t: String| {
+                t + "\n[ergonomics.strength.elbw]\nsource = \"constant\"\npositive_nm = 70.0\nnegative_nm = 60.0\n"
+            }),
+            &["ergonomics.strength.elbw", "no joint called \"elbw\"", "elbow"],
+        ),
+        (
+            "constant_with_limbs.toml",
+            Box::new(|t: String| {
+                t + "\n[ergonomics.strength.elbow]\nsource = \"constant\"\npositive_nm = 70.0\nnegative_nm = 60.0\nlimbs = 2\n"
+            }),
+            &["ergonomics.strength.elbow.limbs", "belongs to source = \"anderson2007\""],
+        ),
+        (
+            "surface_with_torque.toml",
+            Box::new(|t: String| t + "\n[ergonomics.strength.knee]\nsource = \"anderson2007\"\nnegative_nm = 300.0\n"),
+            &["ergonomics.strength.knee.negative_nm", "belongs to source = \"constant\""],
         ),
         (
             "moon.toml",
@@ -287,4 +306,86 @@ fn bad_ergonomic_input_is_refused_naming_the_file_and_field() {
     let (code, stderr) = run(&["plan", behind.to_str().unwrap(), "--out", out.to_str().unwrap(), "-q"]);
     assert_eq!(code, 1, "{stderr}");
     assert!(stderr.contains("ergonomics.lift") && stderr.contains("A = 180.0°"), "{stderr}");
+}
+
+/// The strength source of each named joint of the task `text` (parsed and resolved, not planned).
+fn sources(text: &str, joints: &[&str]) -> Vec<Source> {
+    let task = Task::parse(text, Path::new("strength.toml")).unwrap();
+    let setup = Setup::resolve(&task.file, &task.spec, "strength.toml").unwrap();
+    joints.iter().map(|j| setup.strength[task.spec.model.dof_index(j).unwrap()].clone()).collect()
+}
+
+#[test]
+fn contact_and_unactuated_dofs_have_no_strength_and_the_whole_bodys_flexion_axes_get_the_surfaces() {
+    // The push-up's toe_pivot (the feet rolling on the floor) and the chin-up's grip are not joints a
+    // person is strong at: no strength, where the anatomical ankle has its surface and the shoulder its limit.
+    let push_up = std::fs::read_to_string(example("push_up")).unwrap();
+    let s = sources(&push_up, &["toe_pivot", "ankle", "shoulder"]);
+    assert_eq!(s[0], Source::None, "toe_pivot: {:?}", s[0]);
+    assert!(matches!(s[1], Source::Anderson { joint: 2, .. }) && matches!(s[2], Source::Constant { .. }), "{s:?}");
+    let chin_up = std::fs::read_to_string(example("chin_up_earth")).unwrap();
+    assert_eq!(sources(&chin_up, &["grip"]), [Source::None]);
+    // The same DOF named in [ergonomics.strength] gets what the task gives.
+    let given =
+        push_up.clone() + "\n[ergonomics.strength.toe_pivot]\nsource = \"constant\"\npositive_nm = 20.0\nnegative_nm = 20.0\n";
+    assert!(matches!(sources(&given, &["toe_pivot"])[0], Source::Constant { positive: 20.0, .. }));
+    // The whole body: one limb's surface at each hip, knee and ankle flexion axis; its abduction a constant;
+    // floating free, the six unactuated root DOFs have none (their limit 0 would give 0/0 shares).
+    let whole = "[model]\nhuman = \"whole_body\"\nroot = \"free\"\n\n[motion]\nduration = 1.0\nstart = {}\n\n[[motion.frame_goal]]\nframe = \"l_hand\"\nposition = [0.6, 0.2, 1.4]\n\n[environment]\ngravity = \"space\"\n";
+    let s = sources(whole, &["l_hip_y", "r_knee", "l_ankle_y", "l_hip_x", "root_x", "root_roll"]);
+    let mgh = 81.0 * 9.81 * 1.83;
+    let one_limb =
+        |s: &Source, k: usize| matches!(s, Source::Anderson { joint, scale, .. } if *joint == k && (scale - mgh).abs() < 1e-9);
+    assert!(one_limb(&s[0], 0) && one_limb(&s[1], 1) && one_limb(&s[2], 2), "{s:?}");
+    assert!(matches!(s[3], Source::Constant { .. }) && s[4] == Source::None && s[5] == Source::None, "{s:?}");
+}
+
+/// The plan of the task `text` (named `name` in messages), converged, sampled at 100 Hz.
+fn plan_text(text: &str, name: &str) -> (PlanRecord, mintorque::Model) {
+    let mut task = Task::parse(text, Path::new(name)).unwrap();
+    let planned = task.plan(&mut |_| {}).unwrap();
+    assert!(planned.converged(), "{name}: {}", planned.outcome.reason);
+    let spec = &task.spec;
+    let samples = plan::sample(spec, &planned, &mintorque::report::sample_times(spec.duration, 100.0)).unwrap();
+    (PlanRecord::new(spec, &planned, &samples), spec.model.clone())
+}
+
+#[test]
+fn a_suitcase_in_one_hand_bends_the_spine_towards_the_free_side_unlike_the_same_load_in_both() {
+    let one = std::fs::read_to_string(example("one_hand_carry")).unwrap();
+    let payload = "[[environment.payload]]        # the suitcase, in the right hand\nframe = \"r_hand\"\nmass = 10.0";
+    assert!(one.contains(payload));
+    let halves =
+        "[[environment.payload]]\nframe = \"l_hand\"\nmass = 5.0\n\n[[environment.payload]]\nframe = \"r_hand\"\nmass = 5.0";
+    let both = one.replace(payload, halves);
+    let (a, model) = plan_text(&one, "one_hand_carry.toml");
+    let (b, model_b) = plan_text(&both, "two_hand_carry.toml");
+    let dof = |name: &str| model.dof_index(name).unwrap();
+    let (bend, free_arm, loaded_arm) = (dof("lumbar_x"), dof("l_shoulder_x"), dof("r_shoulder_x"));
+    // The lateral bending moment at the lumbar joint (its load's moment along the lumbar_x axis, +: towards
+    // the left) at the held start: the 10 kg in the right hand, about 0.2 m right of the spine, needs
+    // ≈ 20 N·m bending left; shared by both hands it needs none.
+    // (Each plan with its own model: the payloads are part of the hands' inertia.)
+    let lateral = |r: &PlanRecord, m: &mintorque::Model| {
+        let series = loads::series(m, r, &[]).unwrap();
+        series[0][bend].moment.dot(&m.joints[bend + 1].axis)
+    };
+    let (m_one, m_both) = (lateral(&a, &model), lateral(&b, &model_b));
+    eprintln!("lateral lumbar moment at the start: one hand {m_one:.2} N·m, both hands {m_both:.3} N·m");
+    assert!(m_one > 12.0 && m_both.abs() < 0.05 * m_one, "one hand {m_one} N·m, both {m_both} N·m");
+    // Over the hold the one-hand plan leans the lower spine towards the free side and lifts the free arm
+    // out (a counterweight); with the load shared, the spine stays straight and neither arm moves out.
+    let most = |r: &PlanRecord, i: usize| r.samples.iter().map(|s| s.q[i].to_degrees()).fold(f64::MIN, f64::max);
+    let widest = |r: &PlanRecord, i: usize| r.samples.iter().map(|s| s.q[i].to_degrees().abs()).fold(0.0, f64::max);
+    eprintln!(
+        "one hand: lumbar bends ≤ {:.1}°, free arm out ≤ {:.1}°, loaded arm ≤ {:.1}°; both hands: lumbar ≤ {:.2}°, arms ≤ {:.2}°/{:.2}°",
+        most(&a, bend),
+        most(&a, free_arm),
+        most(&a, loaded_arm),
+        widest(&b, bend),
+        widest(&b, free_arm),
+        widest(&b, loaded_arm)
+    );
+    assert!(most(&a, bend) > 10.0 && most(&a, free_arm) > 5.0 && most(&a, loaded_arm) < 1.0);
+    assert!(widest(&b, bend) < 1.0 && widest(&b, free_arm) < 1.0 && widest(&b, loaded_arm) < 1.0);
 }

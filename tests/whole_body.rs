@@ -291,3 +291,61 @@ fn a_free_floating_figure_with_a_balance_constraint_or_a_fixed_goal_is_refused_n
         assert!(err.contains("astronaut.toml") && err.contains(field), "{field}: {err}");
     }
 }
+
+#[test]
+fn postures_near_a_coordinate_singularity_are_named_with_their_margin_and_others_are_not() {
+    use mintorque::report::singularity::near_singularities;
+    let (m, free) = (whole_body(), free_body());
+    let check = |model: &Model, set: &[(&str, f64)]| near_singularities(model, [(0.5, pose(model, set).as_slice())].into_iter());
+    // The shoulder's humeral rotation at −78°: the flexion and abduction axes 12° from parallel.
+    let near = check(&m, &[("l_shoulder_z", -78.0), ("l_shoulder_y", 40.0)]);
+    assert_eq!(near.len(), 1, "{near:?}");
+    assert_eq!((near[0].joint.as_str(), near[0].middle.as_str()), ("l_shoulder", "l_shoulder_z"));
+    assert!((near[0].margin_deg - 12.0).abs() < 1e-9 && (near[0].middle_angle_deg + 78.0).abs() < 1e-9 && near[0].time_s == 0.5);
+    // The same shoulder rotated −60°, and the hip abducted 40° (its lock at 90°): no warning.
+    assert!(check(&m, &[("l_shoulder_z", -60.0), ("r_hip_x", 40.0)]).is_empty());
+    // The free root rolled 80° (the body near its side) warns; rolled 30° it does not.
+    let rolled = check(&free, &[("root_roll", 80.0)]);
+    assert_eq!(rolled.len(), 1, "{rolled:?}");
+    assert!(rolled[0].joint == "free root" && (rolled[0].margin_deg - 10.0).abs() < 1e-9);
+    assert!(check(&free, &[("root_roll", 30.0)]).is_empty());
+}
+
+/// A left-shoulder rotation to `goal_deg` with every other joint locked, planned by the CLI: its
+/// summary.json's `near_singularities` and its stderr.
+fn shoulder_rotation_plan(goal_deg: f64) -> (serde_json::Value, String) {
+    let m = whole_body();
+    let keep = ["l_shoulder_y", "l_shoulder_z", "l_shoulder_x"];
+    let lock: Vec<String> = m.joint_names().iter().filter(|n| !keep.contains(n)).map(|n| format!("{n} = 0.0")).collect();
+    let text = format!(
+        "[model]\nhuman = \"whole_body\"\nlock = {{ {} }}\n\n[motion]\nduration = 1.0\nstart = {{}}\ngoal = {{ l_shoulder_z = {goal_deg} }}\n",
+        lock.join(", ")
+    );
+    let dir = std::env::temp_dir().join(format!("mintorque-singularity-{}-{}", std::process::id(), goal_deg.abs()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let task = dir.join("rotation.toml");
+    std::fs::write(&task, text).unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_mintorque"))
+        .args(["plan", task.to_str().unwrap(), "--out", dir.join("plan").to_str().unwrap(), "-q"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    let summary: serde_json::Value = serde_json::from_slice(&std::fs::read(dir.join("plan/summary.json")).unwrap()).unwrap();
+    (summary["near_singularities"].clone(), stderr)
+}
+
+#[test]
+fn a_plan_that_nears_a_singularity_says_so_in_its_summary_and_on_the_terminal() {
+    let (near, stderr) = shoulder_rotation_plan(-78.0);
+    assert_eq!(near.as_array().map(Vec::len), Some(1), "{near}");
+    assert_eq!(near[0]["joint"], "l_shoulder");
+    assert!((near[0]["margin_deg"].as_f64().unwrap() - 12.0).abs() < 0.1 && near[0]["time_s"].as_f64().unwrap() > 0.95);
+    assert!(
+        stderr.contains("l_shoulder nears its coordinate singularity") && stderr.contains("l_shoulder_z = -78.0°"),
+        "{stderr}"
+    );
+    let (far, stderr) = shoulder_rotation_plan(-30.0);
+    assert_eq!(far.as_array().map(Vec::len), Some(0), "{far}");
+    assert!(!stderr.contains("singularity"), "{stderr}");
+}

@@ -239,6 +239,7 @@ fn run_plan(
         }
         println!("results in {}", out.display());
     }
+    eprint!("{}", report::singularity::warning_lines(&summary.near_singularities));
     // The worst constraint at the nodes, in units, when it is violated there (the between-node misses are
     // in the reason).
     let between = matches!(planned.outcome.reason, mintorque::solve::StopReason::BetweenNodes(_));

@@ -32,6 +32,7 @@ pub const ALL: &[Example] = &[
     Example { name: "lift_squat", text: include_str!("../../examples/lift_squat.toml") },
     Example { name: "lift_stoop", text: include_str!("../../examples/lift_stoop.toml") },
     Example { name: "moon_overhead_reach", text: include_str!("../../examples/moon_overhead_reach.toml") },
+    Example { name: "one_hand_carry", text: include_str!("../../examples/one_hand_carry.toml") },
     Example { name: "pendulum", text: include_str!("../../examples/pendulum.toml") },
     Example { name: "push_up", text: include_str!("../../examples/push_up.toml") },
     Example { name: "reach_shelf", text: include_str!("../../examples/reach_shelf.toml") },

@@ -9,6 +9,7 @@ pub mod plots;
 pub mod record;
 pub mod render;
 pub mod scene;
+pub mod singularity;
 pub mod solids;
 pub mod summary;
 pub mod viewer;

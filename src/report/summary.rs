@@ -55,6 +55,9 @@ pub struct Summary {
     pub refinement: Vec<crate::plan::Level>,
     /// The relative change of the effort at the last refinement: the discretisation's error estimate.
     pub effort_change_last_refinement: Option<f64>,
+    /// The joints whose coordinates come within [`super::singularity::WARNING_MARGIN_DEG`] of their
+    /// singularity (lock), each at its closest approach; empty when none does.
+    pub near_singularities: Vec<super::singularity::NearSingularity>,
 }
 
 /// One term of the objective.
@@ -238,6 +241,7 @@ impl Summary {
             best_start: plan.best_start,
             refinement: plan.refinement.clone(),
             effort_change_last_refinement: crate::plan::last_change(&plan.refinement),
+            near_singularities: super::singularity::near_singularities(model, samples.iter().map(|s| (s.t, s.q.as_slice()))),
         }
     }
 }

@@ -32,6 +32,10 @@ mod whole_body;
 pub use table::*;
 pub use whole_body::POSTURES;
 
+/// The built-in humans' contact DOFs, which are not anatomical joints: `grip` (the hands rolling about
+/// the bar) and `toe_pivot` (the feet rolling about the toe tips). No person's strength applies to them.
+pub const CONTACT_DOFS: [&str; 2] = ["grip", "toe_pivot"];
+
 // ---- Subject ----
 
 /// The subject: Table I's figure is scaled to this stature (lengths, radii, widths ∝ stature) and mass

@@ -159,6 +159,21 @@ pub fn resolve(file: &TaskFile, model: &Model, origin: &str) -> Result<Vec<Sourc
 fn explicit(spec: &StrengthSpec, name: &str, subject: Option<f64>, origin: &str) -> Result<Source> {
     let field = |f: &str| format!("ergonomics.strength.{name}.{f}");
     let err = |f: &str, m: String| Error::task(origin, field(f), m);
+    fn given(fields: &[(&'static str, bool)]) -> Option<&'static str> {
+        fields.iter().find(|(_, set)| *set).map(|(f, _)| *f)
+    }
+    let anderson_only = [("joint", spec.joint.is_some()), ("limbs", spec.limbs.is_some()), ("flexion", spec.flexion.is_some())];
+    let constant_only = [("positive_nm", spec.positive_nm.is_some()), ("negative_nm", spec.negative_nm.is_some())];
+    // A field of the other source is a mistake, not something to ignore.
+    let misplaced = match spec.source.as_str() {
+        "constant" => given(&anderson_only).map(|f| (f, "anderson2007")),
+        "anderson2007" => given(&constant_only).map(|f| (f, "constant")),
+        _ => None,
+    };
+    if let Some((f, owner)) = misplaced {
+        let message = format!("belongs to source = \"{owner}\", not to source = \"{}\"", spec.source);
+        return Err(err(f, message));
+    }
     match spec.source.as_str() {
         "constant" => {
             let direction = |v: Option<f64>, f: &str| match v {
@@ -201,21 +216,27 @@ fn anderson(joint: usize, limbs: u32, mgh: f64, flexion_sign: f64) -> Source {
     Source::Anderson { joint, scale: f64::from(limbs) * mgh, flexion_sign, label }
 }
 
-/// A joint's anatomical name without its side, and how many limbs it stands for (2 without a side: the
-/// built-in humans' lumped pairs).
+/// A joint's anatomical name without its side or its flexion axis' letter, and how many limbs it stands
+/// for (2 without a side: the built-in humans' lumped pairs): `hip` → (hip, 2), `left_knee` → (knee, 1),
+/// `l_hip_y` → (hip, 1) (the whole body's flexion axis; `l_hip_x` stays `hip_x`, not a surface's).
 fn anatomical(name: &str) -> (&str, u32) {
-    match name.strip_prefix("left_").or_else(|| name.strip_prefix("right_")) {
+    let sides = ["left_", "right_", "l_", "r_"];
+    let (base, limbs) = match sides.iter().find_map(|p| name.strip_prefix(p)) {
         Some(base) => (base, 1),
         None => (name, 2),
-    }
+    };
+    (base.strip_suffix("_y").unwrap_or(base), limbs)
 }
 
+/// A joint's strength unless the task names one: none for what is not an anatomical joint (a free
+/// root's unactuated DOFs, the built-in humans' contact DOFs, any joint whose effort limit is 0), the
+/// Anderson surface at a built-in human's hips, knees and ankles, else the constant limits.
 fn default_source(file: &TaskFile, model: &Model, i: usize, subject: Option<f64>) -> Source {
-    // A free root's six forces are no muscle's: they are held at zero, and have no strength.
-    if model.is_unactuated(i) {
+    let joint = &model.joints[i + 1];
+    let contact = file.model.human.is_some() && crate::model::human::CONTACT_DOFS.contains(&joint.name.as_str());
+    if model.is_unactuated(i) || contact {
         return Source::None;
     }
-    let joint = &model.joints[i + 1];
     let (base, limbs) = anatomical(&joint.name);
     if let (Some(mgh), Some(k)) = (subject, JOINTS.iter().position(|j| *j == base)) {
         return anderson(k, limbs, mgh, 1.0);
@@ -224,7 +245,7 @@ fn default_source(file: &TaskFile, model: &Model, i: usize, subject: Option<f64>
         Some(&s) => (s, s, "constant (output.strength)"),
         None => (joint.limits.effort_toward(true), joint.limits.effort_toward(false), "constant (model effort limit)"),
     };
-    match positive.is_finite() && negative.is_finite() {
+    match positive.is_finite() && negative.is_finite() && positive > 0.0 && negative > 0.0 {
         true => Source::Constant { positive, negative, label: label.into() },
         false => Source::None,
     }
