@@ -4,6 +4,13 @@
 //! by Winter's correction `1/C`, `C = (√2 − 1)^¼ ≈ 0.802`, to put the two passes' −3 dB point at the
 //! requested cutoff. The ends are padded by odd reflection (`2x₀ − xₖ`, which keeps the value and the
 //! slope continuous), so that the filter's start-up transient falls on the padding, which is dropped.
+//!
+//! The response is `|H(f)| = 1/(1 + (f/f₂)⁴)`, `f₂ = f_c/C` the section's cutoff: flat to `(f/f₂)⁴`
+//! (`1 − 3e-4` at 1 Hz for `f_c = 6` Hz), falling 80 dB per decade. At the ends the reflection pins the
+//! filtered value to the sample and the filter's deviation elsewhere (`(f/f₂)⁴` of the signal) reaches
+//! zero there within a few samples: a kink that the second derivative magnifies, so accelerations (and
+//! torques) within about `1/f_c` of a filtered motion's ends are unreliable — as in OpenSim's tool
+//! (`docs/interop.md` gives the figures). Record a little longer than the motion of interest.
 
 use crate::error::{Error, Result};
 
