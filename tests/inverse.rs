@@ -13,10 +13,10 @@ fn sine(f: f64, rate: f64, n: usize) -> Vec<f64> {
 /// The amplitude and phase (rad) of the `f` Hz component of `y`, over whole periods in the middle.
 fn amplitude_phase(y: &[f64], f: f64, rate: f64, from: usize, to: usize) -> (f64, f64) {
     let (mut s, mut c) = (0.0, 0.0);
-    for k in from..to {
+    for (k, yk) in y.iter().enumerate().take(to).skip(from) {
         let w = 2.0 * PI * f * k as f64 / rate;
-        s += y[k] * w.sin();
-        c += y[k] * w.cos();
+        s += yk * w.sin();
+        c += yk * w.cos();
     }
     let m = (to - from) as f64 / 2.0;
     ((s * s + c * c).sqrt() / m, c.atan2(s))

@@ -90,7 +90,7 @@ pub fn render(
     text.push('\n');
     files.insert("summary.json".to_string(), text.into_bytes());
     if !no_plots {
-        files.extend(plots::plots(model, r, None)?);
+        files.extend(plots::plots_labelled(model, r, None, "inverse dynamics")?);
         files.extend(ergonomics::plots::plots(model, r, Some(&loads), &summary.ergonomics)?);
     }
     Ok(files)

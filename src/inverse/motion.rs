@@ -75,7 +75,7 @@ pub fn from_table(table: &Table, model: &Model) -> Result<Motion> {
             }
         }
         if let Some(&before) = motion.times.last() {
-            if !(row[time] > before) {
+            if row[time] <= before {
                 let message = format!("time {} s does not come after the previous row's {before} s", row[time]);
                 return Err(Error::input(origin, format!("line {line}"), message));
             }

@@ -29,7 +29,7 @@ impl CubicSpline {
             let message = format!("needs at least {MIN_KNOTS} knots and one value per knot, got {} and {}", t.len(), y.len());
             return Err(Error::input("cubic spline", "knots", message));
         }
-        if let Some(i) = t.windows(2).position(|w| !(w[1] > w[0])) {
+        if let Some(i) = t.windows(2).position(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater)) {
             return Err(Error::input("cubic spline", format!("t[{}]", i + 1), "the knots must increase strictly"));
         }
         let m = not_a_knot_moments(t, y);
