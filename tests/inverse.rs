@@ -203,13 +203,13 @@ fn a_motion_too_short_to_filter_says_so_and_runs_unfiltered() {
     // 0.2 s: at 6 Hz the filter needs 2/6 = 0.33 s; at 12 Hz, 0.17 s.
     let m = files::read(&files::write(&dir, "m.mot", &files::storage_text(["shoulder", "elbow"], true, 21))).unwrap();
     let model = files::model();
-    let message = mintorque::inverse::inverse_dynamics(&model, &m, &Default::default()).expect_err("too short").to_string();
+    let message = mintorque::inverse::inverse_dynamics(&model, &m, &Default::default(), None).expect_err("too short").to_string();
     assert!(message.contains("too short to low-pass filter at 6 Hz") && message.contains("m.mot"), "{message}");
     let settings = mintorque::inverse::Settings { filter_hz: Some(12.0), rate_hz: None };
-    assert!(mintorque::inverse::inverse_dynamics(&model, &m, &settings).is_ok());
-    assert!(mintorque::inverse::inverse_dynamics(&model, &m, &files::unfiltered()).is_ok());
+    assert!(mintorque::inverse::inverse_dynamics(&model, &m, &settings, None).is_ok());
+    assert!(mintorque::inverse::inverse_dynamics(&model, &m, &files::unfiltered(), None).is_ok());
     let nyquist = mintorque::inverse::Settings { filter_hz: Some(45.0), rate_hz: None };
-    let message = mintorque::inverse::inverse_dynamics(&model, &m, &nyquist).expect_err("above Nyquist").to_string();
+    let message = mintorque::inverse::inverse_dynamics(&model, &m, &nyquist, None).expect_err("above Nyquist").to_string();
     assert!(message.contains("--filter-hz") && message.contains("Nyquist"), "{message}");
     std::fs::remove_dir_all(&dir).ok();
 }
@@ -348,5 +348,54 @@ fn the_command_refuses_a_motion_of_another_model_with_exit_1_and_writes_nothing(
         "-5".as_ref(),
     ]);
     assert_eq!(code, 1, "{stderr}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// External loads: a force at the `lower` link's origin changes the torques by `−Jᵀf` (J of that point by
+/// central differences of its world position, independent of the engine's path), a moment about world y
+/// by `−m_y` at both joints (both turn about y); interpolated over the file's times; refused when they
+/// do not cover the motion or name no frame.
+#[test]
+fn external_loads_from_a_file_change_the_torques_by_their_virtual_work() {
+    use mintorque::dynamics::{
+        kinematics::{frame_placement, placements},
+        Data,
+    };
+    use mintorque::inverse::{inverse_dynamics, loads};
+    let dir = files::scratch("loads");
+    let model = files::model();
+    let m = files::read(&files::write(&dir, "m.mot", &files::storage_text(["shoulder", "elbow"], true, 101))).unwrap();
+    // Force (10, 0, −20 + 20t) N and moment 3t N·m about y, at t = 0 and t = 1 s: linear in t.
+    let text = "time_s,lower.fx_N,lower.fy_N,lower.fz_N,lower.mx_Nm,lower.my_Nm,lower.mz_Nm\n0,10,0,-20,0,0,0\n1,10,0,0,0,3,0\n";
+    let l = loads::parse(text, "loads.csv", &model).unwrap();
+    let free = inverse_dynamics(&model, &m, &files::unfiltered(), None).unwrap();
+    let loaded = inverse_dynamics(&model, &m, &files::unfiltered(), Some(&l)).unwrap();
+    let frame = model.frame_index("lower").unwrap();
+    let mut data = Data::new(&model);
+    let mut position = |q: &[f64]| {
+        placements(&model, &mut data, q);
+        frame_placement(&model, &data, frame).translation
+    };
+    for k in [0, 37, 100] {
+        let (s0, s1) = (&free.record.samples[k], &loaded.record.samples[k]);
+        let (f, my) = (mintorque::spatial::Vec3::new(10.0, 0.0, -20.0 + 20.0 * s0.t), 3.0 * s0.t);
+        for j in 0..2 {
+            let (mut qp, mut qm) = (s0.q.clone(), s0.q.clone());
+            qp[j] += 1e-6;
+            qm[j] -= 1e-6;
+            let jac = (position(&qp) - position(&qm)) / 2e-6;
+            let expected = s0.tau[j] - jac.dot(&f) - my;
+            assert!((s1.tau[j] - expected).abs() < 1e-6, "sample {k} joint {j}: {} vs {expected}", s1.tau[j]);
+        }
+        assert!((s1.tau[0] - s0.tau[0]).abs() > 1.0, "the load changes the torque");
+    }
+    let short = loads::parse("time_s,lower.fx_N,lower.fy_N,lower.fz_N\n0,1,0,0\n0.5,1,0,0\n", "short.csv", &model).unwrap();
+    let message = inverse_dynamics(&model, &m, &files::unfiltered(), Some(&short)).expect_err("short").to_string();
+    assert!(message.contains("short.csv") && message.contains("must cover the motion"), "{message}");
+    let message =
+        loads::parse("time_s,hand.fx_N,hand.fy_N,hand.fz_N\n0,1,0,0\n", "x.csv", &model).expect_err("no frame").to_string();
+    assert!(message.contains("has no frame \"hand\""), "{message}");
+    let message = loads::parse("time_s,lower.fx_N,lower.fz_N\n0,1,0\n", "x.csv", &model).expect_err("two of three").to_string();
+    assert!(message.contains("needs all three of lower.fx_N, .fy_N, .fz_N"), "{message}");
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -146,6 +146,9 @@ enum Command {
         /// Resample to this even rate (Hz; default: the file's mean rate).
         #[arg(long)]
         rate: Option<f64>,
+        /// External loads on the figure over time (CSV: time_s, FRAME.fx_N … FRAME.mz_Nm; world axes).
+        #[arg(long)]
+        loads: Option<PathBuf>,
         /// No summary on stdout.
         #[arg(long, short)]
         quiet: bool,
@@ -399,9 +402,10 @@ fn run(cli: Cli) -> Result<ExitCode> {
             Ok(ExitCode::SUCCESS)
         }
         Command::Simulate { plan: path, steps } => Ok(exit(run_simulate(&path, steps)?)),
-        Command::Inverse { model, motion, out, filter_hz, no_filter, rate, quiet, no_plots, read } => {
+        Command::Inverse { model, motion, out, filter_hz, no_filter, rate, loads, quiet, no_plots, read } => {
             let model = load_model(&model, read)?;
-            let args = inverse::Args { motion: &motion, out: &out, filter_hz, no_filter, rate, quiet, no_plots };
+            let loads = loads.as_deref();
+            let args = inverse::Args { motion: &motion, out: &out, filter_hz, no_filter, rate, loads, quiet, no_plots };
             inverse::run(&model, &args).map(|()| ExitCode::SUCCESS)
         }
         Command::Dynamics { model, states, gravity, bench, read } => {

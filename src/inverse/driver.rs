@@ -1,9 +1,11 @@
 //! Inverse dynamics of a recorded motion, the steps of OpenSim's inverse dynamics tool: resample the
 //! motion to an even rate (through a not-a-knot cubic spline of the samples), low-pass filter it (zero-lag
 //! Butterworth, default 6 Hz), differentiate it (a second such spline through the filtered samples gives
-//! `q̇` and `q̈`), then `τ = RNEA(q, q̇, q̈)` at every sample under the model's gravity.
+//! `q̇` and `q̈`), then `τ = RNEA(q, q̇, q̈) − Σ Jᵀ F_ext` at every sample under the model's gravity and the
+//! external loads of a file ([`super::loads`]), if any.
 
 use super::butterworth::{self, filtfilt};
+use super::loads::Loads;
 use super::motion::Motion;
 use super::spline::CubicSpline;
 use crate::dynamics::{rnea::rnea, Data};
@@ -46,10 +48,13 @@ pub struct Inverse {
     pub input_samples: usize,
 }
 
-/// Inverse dynamics of `motion` on `model` as `settings` say.
-pub fn inverse_dynamics(model: &Model, motion: &Motion, settings: &Settings) -> Result<Inverse> {
+/// Inverse dynamics of `motion` on `model` as `settings` say, under the external `loads` if given.
+pub fn inverse_dynamics(model: &Model, motion: &Motion, settings: &Settings, loads: Option<&Loads>) -> Result<Inverse> {
     let origin = motion.origin.as_str();
     let times = even_times(motion, settings.rate_hz)?;
+    if let Some(l) = loads {
+        l.check_span(times[0], times[times.len() - 1])?;
+    }
     let rate_hz = (times.len() - 1) as f64 / (times[times.len() - 1] - times[0]);
     let mut columns = resample(motion, &times)?;
     if let Some(cutoff) = settings.filter_hz {
@@ -58,7 +63,7 @@ pub fn inverse_dynamics(model: &Model, motion: &Motion, settings: &Settings) -> 
             *c = filtfilt(c, cutoff, rate_hz).map_err(|e| relabel(e, origin))?;
         }
     }
-    let samples = differentiate_and_solve(model, &times, &columns, origin)?;
+    let samples = differentiate_and_solve(model, &times, &columns, loads, origin)?;
     let record = record_of(model, samples);
     Ok(Inverse { record, rate_hz, settings: *settings, input_samples: motion.times.len() })
 }
@@ -110,8 +115,14 @@ fn check_filter_length(times: &[f64], cutoff_hz: f64, rate_hz: f64, origin: &str
     Err(Error::input(origin, "duration", message))
 }
 
-/// `q̇`, `q̈` from a spline through each joint's (filtered) samples, and `τ = RNEA(q, q̇, q̈)`.
-fn differentiate_and_solve(model: &Model, times: &[f64], columns: &[Vec<f64>], origin: &str) -> Result<Vec<SampleRecord>> {
+/// `q̇`, `q̈` from a spline through each joint's (filtered) samples, and `τ = RNEA(q, q̇, q̈) − Σ Jᵀ F_ext`.
+fn differentiate_and_solve(
+    model: &Model,
+    times: &[f64],
+    columns: &[Vec<f64>],
+    loads: Option<&Loads>,
+    origin: &str,
+) -> Result<Vec<SampleRecord>> {
     let splines: Vec<CubicSpline> =
         columns.iter().map(|c| CubicSpline::new(times, c).map_err(|e| relabel(e, origin))).collect::<Result<_>>()?;
     let mut data = Data::new(model);
@@ -125,7 +136,10 @@ fn differentiate_and_solve(model: &Model, times: &[f64], columns: &[Vec<f64>], o
             qd.push(d1);
             qdd.push(d2);
         }
-        let tau = rnea(model, &mut data, &q, &qd, &qdd, &model.gravity, None).as_slice().to_vec();
+        let mut tau = rnea(model, &mut data, &q, &qd, &qdd, &model.gravity, None).as_slice().to_vec();
+        if let Some(l) = loads {
+            l.subtract(model, &data, t, &mut tau);
+        }
         if let Some(j) = tau.iter().position(|x| !x.is_finite()) {
             let message =
                 format!("the torque of joint \"{}\" is not finite ({}): nothing written", model.joints[j + 1].name, tau[j]);

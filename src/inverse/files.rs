@@ -24,6 +24,8 @@ pub struct InverseSummary {
     pub model: String,
     /// The motion file.
     pub motion: String,
+    /// The external loads file, if any.
+    pub loads: Option<String>,
     /// The file's number of samples.
     pub input_samples: usize,
     /// The even rate the motion was resampled to (Hz).
@@ -52,7 +54,7 @@ pub struct FilterSummary {
 }
 
 /// The summary of `inverse` of `motion` on `model`.
-pub fn summary(model: &Model, inverse: &Inverse, motion: &str) -> crate::Result<InverseSummary> {
+pub fn summary(model: &Model, inverse: &Inverse, motion: &str, loads: Option<String>) -> crate::Result<InverseSummary> {
     let r = &inverse.record;
     let span = [r.samples.first().map_or(0.0, |s| s.t), r.samples.last().map_or(0.0, |s| s.t)];
     let kind = "zero-lag 4th-order Butterworth low-pass (2nd order run forward and backward), odd-reflection padding";
@@ -60,6 +62,7 @@ pub fn summary(model: &Model, inverse: &Inverse, motion: &str) -> crate::Result<
         format: SUMMARY_FORMAT,
         model: model.name.clone(),
         motion: motion.to_string(),
+        loads,
         input_samples: inverse.input_samples,
         rate_hz: inverse.rate_hz,
         samples: r.samples.len(),

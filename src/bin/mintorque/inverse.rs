@@ -13,6 +13,7 @@ pub struct Args<'a> {
     pub filter_hz: f64,
     pub no_filter: bool,
     pub rate: Option<f64>,
+    pub loads: Option<&'a Path>,
     pub quiet: bool,
     pub no_plots: bool,
 }
@@ -20,8 +21,9 @@ pub struct Args<'a> {
 pub fn run(model: &mintorque::Model, a: &Args) -> Result<()> {
     let motion = inverse::motion::read(a.motion, model)?;
     let settings = Settings { filter_hz: (!a.no_filter).then_some(a.filter_hz), rate_hz: a.rate };
-    let result = inverse::inverse_dynamics(model, &motion, &settings)?;
-    let summary = files::summary(model, &result, &a.motion.display().to_string())?;
+    let loads = a.loads.map(|p| inverse::loads::read(p, model)).transpose()?;
+    let result = inverse::inverse_dynamics(model, &motion, &settings, loads.as_ref())?;
+    let summary = files::summary(model, &result, &a.motion.display().to_string(), a.loads.map(|p| p.display().to_string()))?;
     let rendered = files::render(model, &result, &summary, a.no_plots)?;
     plan_dir::write_files(a.out, &rendered, &WriteOptions::default())?;
     if !a.quiet {
