@@ -71,6 +71,7 @@
 pub mod dynamics;
 pub mod error;
 pub mod geometry;
+pub mod inverse;
 pub mod model;
 pub mod plan;
 pub mod plan_dir;

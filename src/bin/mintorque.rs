@@ -3,6 +3,8 @@
 //! converged plan), 1 bad input or settings (the message names the file, field or option), 3 a plan that
 //! did not converge or a result that is not finite.
 
+#[path = "mintorque/inverse.rs"]
+mod inverse;
 #[path = "mintorque/progress.rs"]
 mod progress;
 #[path = "mintorque/sweep.rs"]
@@ -123,6 +125,38 @@ enum Command {
         /// RK4 steps over the motion (at least 1).
         #[arg(long, default_value_t = 4000, value_parser = clap::value_parser!(u64).range(1..))]
         steps: u64,
+    },
+    /// Inverse dynamics of a recorded motion (OpenSim .mot/.sto or CSV; docs/interop.md): resampled,
+    /// low-pass filtered, differentiated by splines; torques as OpenSim's .sto and CSV, plots, ergonomics.
+    Inverse {
+        /// A URDF, MJCF, figure file or (uncoupled) OpenSim model.
+        model: PathBuf,
+        /// The motion: .mot/.sto (time and one column per joint; inDegrees as the header says) or .csv
+        /// (time and one column per joint, degrees or metres; `NAME.q_rad` for radians).
+        motion: PathBuf,
+        /// Output directory (new, empty, or one this command wrote): replaced whole.
+        #[arg(long, short)]
+        out: PathBuf,
+        /// Low-pass cutoff (Hz) of the zero-lag 4th-order Butterworth filter.
+        #[arg(long, default_value_t = mintorque::inverse::DEFAULT_FILTER_HZ)]
+        filter_hz: f64,
+        /// Do not filter the motion.
+        #[arg(long, conflicts_with = "filter_hz")]
+        no_filter: bool,
+        /// Resample to this even rate (Hz; default: the file's mean rate).
+        #[arg(long)]
+        rate: Option<f64>,
+        /// External loads on the figure over time (CSV: time_s, FRAME.fx_N … FRAME.mz_Nm; world axes).
+        #[arg(long)]
+        loads: Option<PathBuf>,
+        /// No summary on stdout.
+        #[arg(long, short)]
+        quiet: bool,
+        /// Skip the plots.
+        #[arg(long)]
+        no_plots: bool,
+        #[command(flatten)]
+        read: ModelArgs,
     },
     /// Inverse dynamics, its derivatives, H(q) and forward dynamics of a model at the states of a file
     /// (the reference data's JSON format), printed as JSON in the file's joint order.
@@ -369,6 +403,12 @@ fn run(cli: Cli) -> Result<ExitCode> {
             Ok(ExitCode::SUCCESS)
         }
         Command::Simulate { plan: path, steps } => Ok(exit(run_simulate(&path, steps)?)),
+        Command::Inverse { model, motion, out, filter_hz, no_filter, rate, loads, quiet, no_plots, read } => {
+            let model = load_model(&model, read)?;
+            let loads = loads.as_deref();
+            let args = inverse::Args { motion: &motion, out: &out, filter_hz, no_filter, rate, loads, quiet, no_plots };
+            inverse::run(&model, &args).map(|()| ExitCode::SUCCESS)
+        }
         Command::Dynamics { model, states, gravity, bench, read } => {
             run_dynamics(&model, read, states, gravity, bench).map(|()| ExitCode::SUCCESS)
         }

@@ -108,6 +108,7 @@ impl PlanContents {
         put("plan.json", pretty(record)?);
         put("model.figure.toml", figure::to_toml(model).into_bytes());
         put("trajectory.csv", report::export::csv::csv(model, record).into_bytes());
+        put("torques.sto", report::export::mot::torques_sto(model, record).into_bytes());
         if let Some(series) = &self.joint_loads {
             put("joint_loads.csv", ergonomics::loads::csv(model, record, series).into_bytes());
         }

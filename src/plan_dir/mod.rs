@@ -6,6 +6,7 @@
 //! arrays are checked finite ([`finite`]).
 //!
 //! The files: `plan.json` (the plan, [`PlanRecord`]), `model.figure.toml` (its model), `trajectory.csv`,
+//! `torques.sto` (the torques as OpenSim's inverse dynamics writes them),
 //! `summary.json`, `task.resolved.toml` (the task as planned, CLI overrides included), the plots
 //! `q/qd/qdd/tau[/contact_forces].{svg,png}`, `motion.html`, `filmstrip.{svg,png}` in the task's view,
 //! other views as `filmstrip-VIEW.{svg,png}`, and `manifest.json`.
@@ -103,6 +104,13 @@ pub fn write(dir: &Path, contents: &PlanContents, options: &WriteOptions) -> Res
     finite::check_contents(contents)?;
     let files = contents.render()?;
     atomic::Writer::begin(dir)?.commit(&files, options)
+}
+
+/// Writes `files` (name → bytes) as the whole of directory `dir` with their manifest, as a plan is
+/// written (lock, staging directory, fsync, swap by renames): for results that are not a plan, such as
+/// those of `mintorque inverse`. The same directories are accepted and refused as by [`write`].
+pub fn write_files(dir: &Path, files: &BTreeMap<String, Vec<u8>>, options: &WriteOptions) -> Result<()> {
+    atomic::Writer::begin(dir)?.commit(files, options)
 }
 
 /// Adds (or replaces) `new_files` in the plan of `dir`, which must still be plan `plan_id` (the

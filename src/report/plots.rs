@@ -85,8 +85,19 @@ impl Quantity {
 /// `contact_forces`, each as `.svg` and `.png`. `guess` holds the initial guess sampled like the plan
 /// (its curves are drawn dashed); pass `None` to leave it out.
 pub fn plots(model: &Model, record: &PlanRecord, guess: Option<&[SampleRecord]>) -> Result<Vec<(String, Vec<u8>)>> {
+    plots_labelled(model, record, guess, "planned")
+}
+
+/// [`plots`] with the motion's curves called `label` in the legend (`"planned"` for a plan, `"inverse
+/// dynamics"` for a recorded motion).
+pub fn plots_labelled(
+    model: &Model,
+    record: &PlanRecord,
+    guess: Option<&[SampleRecord]>,
+    label: &str,
+) -> Result<Vec<(String, Vec<u8>)>> {
     let mut files = Vec::new();
-    for (name, svg) in plot_svgs(model, record, guess)? {
+    for (name, svg) in svgs(model, record, guess, label)? {
         let png = super::render::svg_to_png(&svg, PNG_SCALE, "plots")?;
         let stem = name.trim_end_matches(".svg").to_string();
         files.push((name, svg.into_bytes()));
@@ -97,6 +108,10 @@ pub fn plots(model: &Model, record: &PlanRecord, guess: Option<&[SampleRecord]>)
 
 /// The SVG plots alone, as `(file name, SVG text)`.
 pub fn plot_svgs(model: &Model, record: &PlanRecord, guess: Option<&[SampleRecord]>) -> Result<Vec<(String, String)>> {
+    svgs(model, record, guess, "planned")
+}
+
+fn svgs(model: &Model, record: &PlanRecord, guess: Option<&[SampleRecord]>, label: &str) -> Result<Vec<(String, String)>> {
     super::check_samples(model, record)?;
     if let Some(g) = guess {
         check_guess(model, g)?;
@@ -107,7 +122,7 @@ pub fn plot_svgs(model: &Model, record: &PlanRecord, guess: Option<&[SampleRecor
     let mut files = Vec::new();
     if model.nv() > 0 {
         for quantity in Quantity::ALL {
-            files.push((format!("{}.svg", quantity.file_stem()), joint_plot(model, record, guess, quantity)?));
+            files.push((format!("{}.svg", quantity.file_stem()), joint_plot(model, record, guess, quantity, label)?));
         }
     }
     if !record.contacts.is_empty() {
@@ -189,7 +204,13 @@ pub(crate) fn time_range(record: &PlanRecord) -> (f64, f64) {
 }
 
 /// One quantity for every joint, a panel each.
-fn joint_plot(model: &Model, record: &PlanRecord, guess: Option<&[SampleRecord]>, quantity: Quantity) -> Result<String> {
+fn joint_plot(
+    model: &Model,
+    record: &PlanRecord,
+    guess: Option<&[SampleRecord]>,
+    quantity: Quantity,
+    label: &str,
+) -> Result<String> {
     let layout = grid(model.nv());
     let mut svg = String::new();
     {
@@ -199,7 +220,7 @@ fn joint_plot(model: &Model, record: &PlanRecord, guess: Option<&[SampleRecord]>
         let body = root.titled(&title, ("sans-serif", 22)).map_err(drawing_error)?;
         let panels = body.split_evenly(layout);
         for (i, panel) in panels.iter().enumerate().take(model.nv()) {
-            joint_panel(panel, model, record, guess, quantity, i)?;
+            joint_panel(panel, model, record, guess, quantity, i, label)?;
         }
         root.present().map_err(drawing_error)?;
     }
@@ -213,6 +234,7 @@ fn joint_panel<DB: DrawingBackend>(
     guess: Option<&[SampleRecord]>,
     quantity: Quantity,
     i: usize,
+    label: &str,
 ) -> Result<()> {
     let joint = &model.joints[i + 1];
     let (unit, factor) = quantity.unit(joint.kind);
@@ -244,7 +266,7 @@ fn joint_panel<DB: DrawingBackend>(
         draw_strength_band(&mut chart, x, edges, i == 0)?;
     }
     let line = chart.draw_series(LineSeries::new(planned, PLANNED.stroke_width(2))).map_err(drawing_error)?;
-    line.label("planned").legend(|(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], PLANNED.stroke_width(2)));
+    line.label(label).legend(|(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], PLANNED.stroke_width(2)));
     for (k, run) in inside_runs(&guessed, y).into_iter().enumerate() {
         let dashed = chart.draw_series(DashedLineSeries::new(run, 6, 4, GUESS.stroke_width(2))).map_err(drawing_error)?;
         if k > 0 {

@@ -1,0 +1,184 @@
+//! Inverse dynamics of a recorded motion, the steps of OpenSim's inverse dynamics tool: resample the
+//! motion to an even rate (through a not-a-knot cubic spline of the samples), low-pass filter it (zero-lag
+//! Butterworth, default 6 Hz), differentiate it (a second such spline through the filtered samples gives
+//! `q̇` and `q̈`), then `τ = RNEA(q, q̇, q̈) − Σ Jᵀ F_ext` at every sample under the model's gravity and the
+//! external loads of a file ([`super::loads`]), if any.
+
+use super::butterworth::{self, filtfilt};
+use super::loads::Loads;
+use super::motion::Motion;
+use super::spline::CubicSpline;
+use crate::dynamics::{rnea::rnea, Data};
+use crate::error::{Error, Result};
+use crate::model::Model;
+use crate::report::record::{PlanRecord, SampleRecord, FORMAT};
+
+/// The default low-pass cutoff (Hz): 6 Hz, the usual choice for gait and lifting kinematics.
+pub const DEFAULT_FILTER_HZ: f64 = 6.0;
+/// The highest sample rate accepted (Hz), and the most samples a motion may be resampled to.
+const MAX_RATE_HZ: f64 = 1e5;
+const MAX_SAMPLES: usize = 1_000_000;
+
+/// How a recorded motion is processed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Settings {
+    /// The low-pass cutoff (Hz); `None` leaves the motion unfiltered.
+    pub filter_hz: Option<f64>,
+    /// The even sample rate to resample to (Hz); `None` keeps the file's mean rate.
+    pub rate_hz: Option<f64>,
+}
+
+impl Default for Settings {
+    fn default() -> Settings {
+        Settings { filter_hz: Some(DEFAULT_FILTER_HZ), rate_hz: None }
+    }
+}
+
+/// The inverse dynamics of a motion.
+#[derive(Clone, Debug)]
+pub struct Inverse {
+    /// The motion as processed, sampled evenly: `q`, `q̇`, `q̈` and `τ` at every sample (SI), as a plan's
+    /// record, so that every report of a plan renders it.
+    pub record: PlanRecord,
+    /// The even sample rate used (Hz): the one asked for, adjusted so that the samples span the motion.
+    pub rate_hz: f64,
+    /// The settings asked for.
+    pub settings: Settings,
+    /// The file's number of samples.
+    pub input_samples: usize,
+}
+
+/// Inverse dynamics of `motion` on `model` as `settings` say, under the external `loads` if given.
+pub fn inverse_dynamics(model: &Model, motion: &Motion, settings: &Settings, loads: Option<&Loads>) -> Result<Inverse> {
+    let origin = motion.origin.as_str();
+    let times = even_times(motion, settings.rate_hz)?;
+    if let Some(l) = loads {
+        l.check_span(times[0], times[times.len() - 1])?;
+    }
+    let rate_hz = (times.len() - 1) as f64 / (times[times.len() - 1] - times[0]);
+    let mut columns = resample(motion, &times)?;
+    if let Some(cutoff) = settings.filter_hz {
+        check_filter_length(&times, cutoff, rate_hz, origin)?;
+        for c in columns.iter_mut() {
+            *c = filtfilt(c, cutoff, rate_hz).map_err(|e| relabel(e, origin))?;
+        }
+    }
+    let samples = differentiate_and_solve(model, &times, &columns, loads, origin)?;
+    let record = record_of(model, samples);
+    Ok(Inverse { record, rate_hz, settings: *settings, input_samples: motion.times.len() })
+}
+
+/// Even sample times from the motion's first to its last: at `rate_hz` (the file's mean rate when
+/// `None`), the count rounded so that both ends are samples.
+fn even_times(motion: &Motion, rate_hz: Option<f64>) -> Result<Vec<f64>> {
+    let (t0, t1) = (motion.times[0], motion.times[motion.times.len() - 1]);
+    let span = t1 - t0;
+    let rate = rate_hz.unwrap_or((motion.times.len() - 1) as f64 / span);
+    if !(rate.is_finite() && rate > 0.0 && rate <= MAX_RATE_HZ) {
+        let message = format!("must be a rate above 0 and at most {MAX_RATE_HZ} Hz, got {rate} Hz");
+        return Err(Error::input(&motion.origin, "sample rate (--rate)", message));
+    }
+    // n = round(span · rate) + 1 samples, h = span/(n − 1).
+    let intervals = (span * rate).round().max(3.0);
+    if intervals >= MAX_SAMPLES as f64 {
+        let message = format!("{rate} Hz over {span} s makes {intervals} samples; at most {MAX_SAMPLES}");
+        return Err(Error::input(&motion.origin, "sample rate (--rate)", message));
+    }
+    let n = intervals as usize + 1;
+    Ok((0..n).map(|k| t0 + span * k as f64 / (n - 1) as f64).collect())
+}
+
+/// Each joint's positions at `times`, through the not-a-knot spline of its samples: one column per joint.
+fn resample(motion: &Motion, times: &[f64]) -> Result<Vec<Vec<f64>>> {
+    let nv = motion.q.first().map_or(0, Vec::len);
+    (0..nv)
+        .map(|j| {
+            let y: Vec<f64> = motion.q.iter().map(|q| q[j]).collect();
+            let spline = CubicSpline::new(&motion.times, &y).map_err(|e| relabel(e, &motion.origin))?;
+            Ok(times.iter().map(|&t| spline.eval(t).0).collect())
+        })
+        .collect()
+}
+
+/// A motion too short for the filter: it must last two periods of the cutoff (`2/f_c`), so that the
+/// filter's response settles within it.
+fn check_filter_length(times: &[f64], cutoff_hz: f64, rate_hz: f64, origin: &str) -> Result<()> {
+    butterworth::check_cutoff(cutoff_hz, rate_hz).map_err(|e| relabel(e, origin))?;
+    let span = times[times.len() - 1] - times[0];
+    if span >= 2.0 / cutoff_hz {
+        return Ok(());
+    }
+    let message = format!(
+        "lasts {span:.4} s, too short to low-pass filter at {cutoff_hz} Hz (at least 2/f_c = {:.4} s): record longer, raise --filter-hz or pass --no-filter",
+        2.0 / cutoff_hz
+    );
+    Err(Error::input(origin, "duration", message))
+}
+
+/// `q̇`, `q̈` from a spline through each joint's (filtered) samples, and `τ = RNEA(q, q̇, q̈) − Σ Jᵀ F_ext`.
+fn differentiate_and_solve(
+    model: &Model,
+    times: &[f64],
+    columns: &[Vec<f64>],
+    loads: Option<&Loads>,
+    origin: &str,
+) -> Result<Vec<SampleRecord>> {
+    let splines: Vec<CubicSpline> =
+        columns.iter().map(|c| CubicSpline::new(times, c).map_err(|e| relabel(e, origin))).collect::<Result<_>>()?;
+    let mut data = Data::new(model);
+    let mut samples = Vec::with_capacity(times.len());
+    for (k, &t) in times.iter().enumerate() {
+        let (mut q, mut qd, mut qdd) = (Vec::new(), Vec::new(), Vec::new());
+        for (j, s) in splines.iter().enumerate() {
+            // At a knot the spline's value is the sample itself.
+            let (_, d1, d2) = s.eval(t);
+            q.push(columns[j][k]);
+            qd.push(d1);
+            qdd.push(d2);
+        }
+        let mut tau = rnea(model, &mut data, &q, &qd, &qdd, &model.gravity, None).as_slice().to_vec();
+        if let Some(l) = loads {
+            l.subtract(model, &data, t, &mut tau);
+        }
+        if let Some(j) = tau.iter().position(|x| !x.is_finite()) {
+            let message =
+                format!("the torque of joint \"{}\" is not finite ({}): nothing written", model.joints[j + 1].name, tau[j]);
+            return Err(Error::input(origin, format!("sample {k} (t = {t} s)"), message));
+        }
+        samples.push(SampleRecord { t, q, qd, qdd, tau, contact_forces: Vec::new() });
+    }
+    Ok(samples)
+}
+
+/// The samples as a plan's record (no control points, no contacts), for the plan reports.
+fn record_of(model: &Model, samples: Vec<SampleRecord>) -> PlanRecord {
+    let duration = samples.last().map_or(0.0, |s| s.t) - samples.first().map_or(0.0, |s| s.t);
+    let g = model.gravity;
+    PlanRecord {
+        format: FORMAT.into(),
+        model_name: model.name.clone(),
+        joint_names: model.joint_names().iter().map(|s| s.to_string()).collect(),
+        duration,
+        gravity: [g.x, g.y, g.z],
+        n_ctrl: 0,
+        ctrl: Vec::new(),
+        lambda_ctrl: Vec::new(),
+        contacts: Vec::new(),
+        support: None,
+        obstacles: Vec::new(),
+        collision_shapes: Vec::new(),
+        converged: true,
+        multipliers: None,
+        check_nodes: Vec::new(),
+        closure_nodes: Vec::new(),
+        samples,
+    }
+}
+
+/// An error of a step (the filter, a spline) made to name the motion's file.
+fn relabel(e: Error, origin: &str) -> Error {
+    match e {
+        Error::Input { field, message, .. } => Error::input(origin, field, message),
+        other => other,
+    }
+}

@@ -1,0 +1,38 @@
+#!/usr/bin/env python3
+"""OpenSim's inverse dynamics tool on a model and a motion, for tests/inverse_opensim.rs (OpenSim 4.6 from
+PyPI: scripts/opensim-venv.sh).
+
+  opensim_id.py MODEL.osim MOTION.mot OUT_DIR CUTOFF_HZ
+
+runs InverseDynamicsTool over the whole motion (forces other than gravity excluded; CUTOFF_HZ -1 leaves the
+coordinates unfiltered, as the tool's lowpass_cutoff_frequency does) and writes OUT_DIR/opensim_id.sto.
+"""
+import os
+import sys
+
+import opensim as osim
+
+osim.Logger.setLevelString("error")
+osim.Logger.removeFileSink()  # no opensim.log left behind
+
+
+def main():
+    model, motion, out_dir, cutoff = sys.argv[1], sys.argv[2], sys.argv[3], float(sys.argv[4])
+    storage = osim.Storage(motion)
+    tool = osim.InverseDynamicsTool()
+    tool.setModelFileName(os.path.abspath(model))
+    tool.setCoordinatesFileName(os.path.abspath(motion))
+    tool.setLowpassCutoffFrequency(cutoff)
+    tool.setStartTime(storage.getFirstTime())
+    tool.setEndTime(storage.getLastTime())
+    excluded = osim.ArrayStr()
+    excluded.append("All")
+    tool.setExcludedForces(excluded)
+    tool.setResultsDir(os.path.abspath(out_dir))
+    tool.setOutputGenForceFileName("opensim_id.sto")
+    if not tool.run():
+        sys.exit("InverseDynamicsTool failed")
+
+
+if __name__ == "__main__":
+    main()
