@@ -206,6 +206,11 @@ fn file_stem(name: &str) -> String {
     }
 }
 
+/// Model (Z up) to BVH and glTF (Y up) axes: `(x, y, z) ↦ (x, z, −y)`, a rotation of −90° about x.
+pub(crate) fn to_y_up() -> crate::spatial::Mat3 {
+    crate::spatial::Mat3::new(1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, -1.0, 0.0)
+}
+
 /// Every body's placement in the world at `q` (forward kinematics without the dynamics workspace).
 pub(crate) fn body_placements(model: &Model, q: &[f64]) -> Vec<Transform> {
     let mut world = vec![Transform::IDENTITY; model.bodies.len()];

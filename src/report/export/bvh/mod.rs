@@ -27,7 +27,7 @@ mod skeleton;
 pub use skeleton::ChannelSet;
 
 use super::resample::{even_times, sample_at};
-use super::{body_placements, LengthUnit, Options};
+use super::{body_placements, to_y_up, LengthUnit, Options};
 use crate::error::{Error, Result};
 use crate::model::{JointKind, Model, Shape};
 use crate::report::record::PlanRecord;
@@ -35,11 +35,6 @@ use crate::spatial::{Mat3, Transform, Vec3};
 use euler::euler_zxy_near;
 use skeleton::{channel_names, depth_first, segments, Rotation, Segment};
 use std::fmt::Write as _;
-
-/// Model (Z up) to BVH (Y up) axes: `(x, y, z) ↦ (x, z, −y)`, a rotation of −90° about x.
-fn to_y_up() -> Mat3 {
-    Mat3::new(1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, -1.0, 0.0)
-}
 
 /// A degree of freedom "moves" when it leaves its rest value 0 at some sample (by more than 1e-9 rad or m).
 fn moving_dofs(model: &Model, record: &PlanRecord) -> Vec<bool> {

@@ -6,7 +6,7 @@
 //! figure) is merged into that chain, so the BVH ROOT is the body that moves.
 
 use super::super::children;
-use super::to_y_up;
+use super::super::to_y_up;
 use crate::model::{JointKind, Model};
 use crate::spatial::Transform;
 
