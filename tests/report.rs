@@ -375,6 +375,85 @@ fn gltf_reads_back_valid_with_the_joint_angles_of_the_plan() {
     }
 }
 
+/// A node's local matrix at keyframe `k`: its animated rotation/translation there, else its own TRS.
+fn node_local(node: &gltf::Node, motion: &GltfMotion, k: usize) -> nalgebra::Matrix4<f64> {
+    let (t, r, _) = node.transform().decomposed();
+    let keys = node.name().and_then(|n| motion.channels.get(n));
+    let r = keys.and_then(|c| c.rotations.get(k)).copied().unwrap_or(r);
+    let t = keys.and_then(|c| c.translations.get(k)).copied().unwrap_or(t);
+    let q = nalgebra::UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(r[3], r[0], r[1], r[2]).cast::<f64>());
+    nalgebra::Isometry3::from_parts(nalgebra::Translation3::new(t[0].into(), t[1].into(), t[2].into()), q).to_homogeneous()
+}
+
+/// Every node's scene matrix at keyframe `k` (`None` for a node outside the scene's tree).
+fn node_worlds(doc: &gltf::Document, motion: &GltfMotion, k: usize) -> Vec<nalgebra::Matrix4<f64>> {
+    let mut world = vec![nalgebra::Matrix4::identity(); doc.nodes().len()];
+    let mut stack: Vec<(gltf::Node, nalgebra::Matrix4<f64>)> =
+        doc.default_scene().unwrap().nodes().map(|n| (n, nalgebra::Matrix4::identity())).collect();
+    while let Some((node, parent)) = stack.pop() {
+        world[node.index()] = parent * node_local(&node, motion, k);
+        stack.extend(node.children().map(|c| (c, world[node.index()])));
+    }
+    world
+}
+
+fn point(m: &nalgebra::Matrix4<f64>, p: [f32; 3]) -> Vec3 {
+    let h = m * nalgebra::Vector4::new(p[0].into(), p[1].into(), p[2].into(), 1.0);
+    Vec3::new(h.x, h.y, h.z)
+}
+
+#[test]
+fn gltf_skinned_mesh_is_bound_rigidly_and_moves_onto_the_rigid_parts() {
+    let model = human_model(Structure::WholeBody);
+    let rec = record(&model, &grid(1.0, 60), swing);
+    let (_, bytes) = export(&model, &rec, Format::Gltf).unwrap();
+    let motion = read_glb(&bytes);
+    let doc = gltf::Gltf::from_slice(&bytes).unwrap();
+    let blob = doc.blob.clone().unwrap();
+    let skin = doc.skins().next().expect("a skin");
+    let joints: Vec<usize> = skin.joints().map(|j| j.index()).collect();
+    let names: Vec<&str> = skin.joints().map(|j| j.name().unwrap()).collect();
+    assert_eq!(names, model.bodies.iter().map(|b| b.name.as_str()).collect::<Vec<_>>(), "one joint per body, in order");
+    let reader = skin.reader(|_| Some(&blob));
+    let inverse_bind: Vec<nalgebra::Matrix4<f64>> =
+        reader.read_inverse_bind_matrices().unwrap().map(|m| nalgebra::Matrix4::from(m).cast::<f64>()).collect();
+    // The inverse bind matrices are the inverses of the joints' scene matrices at rest (q = 0: the nodes'
+    // own TRS, without the animation).
+    let rest = node_worlds(&doc, &GltfMotion { times: vec![], channels: BTreeMap::new(), meshes_on: vec![] }, 0);
+    for (j, ibm) in joints.iter().zip(&inverse_bind) {
+        assert!((ibm * rest[*j] - nalgebra::Matrix4::identity()).norm() < 1e-5, "joint {j}");
+    }
+    let skinned_node = doc.nodes().find(|n| n.skin().is_some()).expect("a skinned node");
+    let primitive = skinned_node.mesh().unwrap().primitives().next().unwrap();
+    let r = primitive.reader(|_| Some(&blob));
+    let positions: Vec<[f32; 3]> = r.read_positions().unwrap().collect();
+    let vertex_joints: Vec<[u16; 4]> = r.read_joints(0).unwrap().into_u16().collect();
+    let weights: Vec<[f32; 4]> = r.read_weights(0).unwrap().into_f32().collect();
+    assert!(weights.iter().all(|w| *w == [1.0, 0.0, 0.0, 0.0]), "each vertex bound to one joint, rigidly");
+    for k in [0, 23, 47] {
+        let world = node_worlds(&doc, &motion, k);
+        // The rigid parts' vertices at keyframe k, body by body in node order: where the skin must put them.
+        let mut rigid = Vec::new();
+        for (b, &node) in joints.iter().enumerate() {
+            let Some(mesh) = doc.nodes().nth(node).unwrap().mesh() else { continue };
+            let p = mesh.primitives().next().unwrap();
+            let local: Vec<[f32; 3]> = p.reader(|_| Some(&blob)).read_positions().unwrap().collect();
+            rigid.extend(local.iter().map(|v| (b, point(&world[node], *v))));
+        }
+        assert_eq!(rigid.len(), positions.len());
+        let mut moved = 0.0f64;
+        for (v, (&(b, want), bound)) in rigid.iter().zip(&vertex_joints).enumerate() {
+            let j = bound[0] as usize;
+            assert_eq!(j, b, "vertex {v} bound to the joint of its body");
+            let got = point(&(world[joints[j]] * inverse_bind[j]), positions[v]);
+            assert!((got - want).norm() < 2e-5, "vertex {v} at keyframe {k}: skinned {got} vs rigid {want}");
+            moved = moved.max((got - point(&nalgebra::Matrix4::identity(), positions[v])).norm());
+        }
+        // The opposite: the motion does move the skinned vertices away from the bind pose.
+        assert!(moved > 0.1, "keyframe {k}: the skin stays at its bind pose ({moved} m)");
+    }
+}
+
 // ---- Export: BVH, read back by Python's `bvh` package ----
 
 const BVH_READER: &str = r#"
@@ -710,10 +789,9 @@ fn csv_options_choose_the_angle_unit_columns_joints_and_rate() {
     for (r, row) in rows.iter().enumerate() {
         assert_close(row[1], swing(knee, r as f64 / 30.0)[0], 1e-5, "knee q at 30 Hz");
     }
-    for (bad, want) in [(CsvOptions { joints: vec!["neck".into()], ..picked.clone() }, "no joint \"neck\"")] {
-        let err = export_with(&model, &rec, Format::Csv, &Options { csv: bad, ..Options::default() }).unwrap_err();
-        assert!(err.to_string().contains(want) && err.to_string().contains("ankle, knee"), "{err}");
-    }
+    let bad = CsvOptions { joints: vec!["neck".into()], ..picked.clone() };
+    let err = export_with(&model, &rec, Format::Csv, &Options { csv: bad, ..Options::default() }).unwrap_err();
+    assert!(err.to_string().contains("no joint \"neck\"") && err.to_string().contains("ankle, knee"), "{err}");
     let err = Options::from_names(None, "cm", "joint", "deg", &["q".into(), "torque".into()], vec![], None).unwrap_err();
     assert!(err.to_string().contains("unknown column \"torque\"") && err.to_string().contains("tau"), "{err}");
     let err = Options::from_names(None, "inch", "joint", "deg", &[], vec![], None).unwrap_err();

@@ -32,7 +32,7 @@ pub fn euler_zxy_near(r: &Mat3, previous: Option<[f64; 3]>) -> [f64; 3] {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::spatial::axis_angle;
+    use crate::spatial::{axis_angle, Vec3};
 
     fn rot(k: usize, a: f64) -> Mat3 {
         axis_angle(&Vec3::ith(k, 1.0), a)
