@@ -69,6 +69,16 @@ fn plan_writes_every_output_and_exits_zero() {
         assert_eq!(code, 0, "{stderr}");
         assert!(stdout.contains("wrote"), "{stdout}");
     }
+    // The export options reach the exporters; one given to a format it does not apply to is refused.
+    let picked = out.join("picked.csv");
+    let args = ["export", "--format", "csv", "--angles", "rad", "--columns", "q,tau", "--rate", "10", "--out"];
+    let (code, _, stderr) = run(mintorque().args(args).arg(&picked).arg(&out));
+    assert_eq!(code, 0, "{stderr}");
+    let header = std::fs::read_to_string(&picked).unwrap().lines().next().unwrap().to_string();
+    assert!(header.contains(".q_rad,") && header.contains(".tau_Nm") && !header.contains("qd_"), "{header}");
+    let (code, _, stderr) = run(mintorque().args(["export", "--format", "csv", "--fps", "30"]).arg(&out));
+    assert_eq!(code, 1);
+    assert!(stderr.contains("--fps") && stderr.contains("bvh only"), "{stderr}");
 }
 
 #[test]

@@ -3,11 +3,12 @@
 //! and CSV by hand), plots, and bad input. Records are synthetic (known motions on real models), so no
 //! test needs a solve.
 
+use mintorque::dynamics::{kinematics, Data};
 use mintorque::model::human::{self, HumanParams, Structure};
 use mintorque::model::{Body, Joint, JointKind, JointLimits, Model, Passive};
 use mintorque::plan_dir::load as load_plan_dir;
 use mintorque::report::ergonomics::{ergonomics, intervals_above, text_table};
-use mintorque::report::export::{export, Format};
+use mintorque::report::export::{export, export_with, ChannelSet, Format, Options};
 use mintorque::report::plots::{plot_svgs, plots};
 use mintorque::report::record::{ContactRecord, PlanRecord, SampleRecord, FORMAT};
 use mintorque::spatial::{axis_angle, Inertia, Mat3, Transform, Vec3};
@@ -374,6 +375,85 @@ fn gltf_reads_back_valid_with_the_joint_angles_of_the_plan() {
     }
 }
 
+/// A node's local matrix at keyframe `k`: its animated rotation/translation there, else its own TRS.
+fn node_local(node: &gltf::Node, motion: &GltfMotion, k: usize) -> nalgebra::Matrix4<f64> {
+    let (t, r, _) = node.transform().decomposed();
+    let keys = node.name().and_then(|n| motion.channels.get(n));
+    let r = keys.and_then(|c| c.rotations.get(k)).copied().unwrap_or(r);
+    let t = keys.and_then(|c| c.translations.get(k)).copied().unwrap_or(t);
+    let q = nalgebra::UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(r[3], r[0], r[1], r[2]).cast::<f64>());
+    nalgebra::Isometry3::from_parts(nalgebra::Translation3::new(t[0].into(), t[1].into(), t[2].into()), q).to_homogeneous()
+}
+
+/// Every node's scene matrix at keyframe `k` (`None` for a node outside the scene's tree).
+fn node_worlds(doc: &gltf::Document, motion: &GltfMotion, k: usize) -> Vec<nalgebra::Matrix4<f64>> {
+    let mut world = vec![nalgebra::Matrix4::identity(); doc.nodes().len()];
+    let mut stack: Vec<(gltf::Node, nalgebra::Matrix4<f64>)> =
+        doc.default_scene().unwrap().nodes().map(|n| (n, nalgebra::Matrix4::identity())).collect();
+    while let Some((node, parent)) = stack.pop() {
+        world[node.index()] = parent * node_local(&node, motion, k);
+        stack.extend(node.children().map(|c| (c, world[node.index()])));
+    }
+    world
+}
+
+fn point(m: &nalgebra::Matrix4<f64>, p: [f32; 3]) -> Vec3 {
+    let h = m * nalgebra::Vector4::new(p[0].into(), p[1].into(), p[2].into(), 1.0);
+    Vec3::new(h.x, h.y, h.z)
+}
+
+#[test]
+fn gltf_skinned_mesh_is_bound_rigidly_and_moves_onto_the_rigid_parts() {
+    let model = human_model(Structure::WholeBody);
+    let rec = record(&model, &grid(1.0, 60), swing);
+    let (_, bytes) = export(&model, &rec, Format::Gltf).unwrap();
+    let motion = read_glb(&bytes);
+    let doc = gltf::Gltf::from_slice(&bytes).unwrap();
+    let blob = doc.blob.clone().unwrap();
+    let skin = doc.skins().next().expect("a skin");
+    let joints: Vec<usize> = skin.joints().map(|j| j.index()).collect();
+    let names: Vec<&str> = skin.joints().map(|j| j.name().unwrap()).collect();
+    assert_eq!(names, model.bodies.iter().map(|b| b.name.as_str()).collect::<Vec<_>>(), "one joint per body, in order");
+    let reader = skin.reader(|_| Some(&blob));
+    let inverse_bind: Vec<nalgebra::Matrix4<f64>> =
+        reader.read_inverse_bind_matrices().unwrap().map(|m| nalgebra::Matrix4::from(m).cast::<f64>()).collect();
+    // The inverse bind matrices are the inverses of the joints' scene matrices at rest (q = 0: the nodes'
+    // own TRS, without the animation).
+    let rest = node_worlds(&doc, &GltfMotion { times: vec![], channels: BTreeMap::new(), meshes_on: vec![] }, 0);
+    for (j, ibm) in joints.iter().zip(&inverse_bind) {
+        assert!((ibm * rest[*j] - nalgebra::Matrix4::identity()).norm() < 1e-5, "joint {j}");
+    }
+    let skinned_node = doc.nodes().find(|n| n.skin().is_some()).expect("a skinned node");
+    let primitive = skinned_node.mesh().unwrap().primitives().next().unwrap();
+    let r = primitive.reader(|_| Some(&blob));
+    let positions: Vec<[f32; 3]> = r.read_positions().unwrap().collect();
+    let vertex_joints: Vec<[u16; 4]> = r.read_joints(0).unwrap().into_u16().collect();
+    let weights: Vec<[f32; 4]> = r.read_weights(0).unwrap().into_f32().collect();
+    assert!(weights.iter().all(|w| *w == [1.0, 0.0, 0.0, 0.0]), "each vertex bound to one joint, rigidly");
+    for k in [0, 23, 47] {
+        let world = node_worlds(&doc, &motion, k);
+        // The rigid parts' vertices at keyframe k, body by body in node order: where the skin must put them.
+        let mut rigid = Vec::new();
+        for (b, &node) in joints.iter().enumerate() {
+            let Some(mesh) = doc.nodes().nth(node).unwrap().mesh() else { continue };
+            let p = mesh.primitives().next().unwrap();
+            let local: Vec<[f32; 3]> = p.reader(|_| Some(&blob)).read_positions().unwrap().collect();
+            rigid.extend(local.iter().map(|v| (b, point(&world[node], *v))));
+        }
+        assert_eq!(rigid.len(), positions.len());
+        let mut moved = 0.0f64;
+        for (v, (&(b, want), bound)) in rigid.iter().zip(&vertex_joints).enumerate() {
+            let j = bound[0] as usize;
+            assert_eq!(j, b, "vertex {v} bound to the joint of its body");
+            let got = point(&(world[joints[j]] * inverse_bind[j]), positions[v]);
+            assert!((got - want).norm() < 2e-5, "vertex {v} at keyframe {k}: skinned {got} vs rigid {want}");
+            moved = moved.max((got - point(&nalgebra::Matrix4::identity(), positions[v])).norm());
+        }
+        // The opposite: the motion does move the skinned vertices away from the bind pose.
+        assert!(moved > 0.1, "keyframe {k}: the skin stays at its bind pose ({moved} m)");
+    }
+}
+
 // ---- Export: BVH, read back by Python's `bvh` package ----
 
 const BVH_READER: &str = r#"
@@ -448,49 +528,95 @@ fn joints_named(model: &Model, name: &str) -> Vec<usize> {
     }
 }
 
-/// Writes the BVH of `model` swinging, reads it back with Python and checks, at a few frames, that each
-/// BVH joint's rotation is its joints' `Π Rot(aᵢ, qᵢ)` in Y-up axes (every placement of these models is
-/// a pure translation, so no rest rotation enters), and that the offsets are the placements.
-fn check_bvh_round_trip(model: &Model, tag: &str) -> serde_json::Value {
-    let rec = record(model, &grid(1.0, 50), swing);
-    let (name, bytes) = export(model, &rec, Format::Bvh).unwrap();
+/// The BVH joint `name` as model joints: the root's chain (from body 0 down to the body it is named after,
+/// when the root is merged), or the joint of that name, or the revolutes of that group.
+fn bvh_chain(model: &Model, name: &str, is_root: bool) -> Vec<usize> {
+    if is_root {
+        let mut chain = Vec::new();
+        let mut b = model.body_index(name).unwrap_or_else(|| panic!("BVH root {name} is no body"));
+        while b != 0 {
+            chain.insert(0, b);
+            b = model.joints[b].parent;
+        }
+        return chain;
+    }
+    joints_named(model, name)
+}
+
+/// World placements of the BVH joints at frame `f` (the parsed file's `values[f]`) by BVH's own forward
+/// kinematics: `W = W_parent · Trans(position channels, else OFFSET) · Π Rot(rotation channels)`, in the
+/// file's axes and unit. A position channel holds that coordinate in full; missing axes keep the OFFSET's.
+fn bvh_forward_kinematics(parsed: &serde_json::Value, f: usize) -> BTreeMap<String, Transform> {
+    let mut world: BTreeMap<String, Transform> = BTreeMap::new();
+    for joint in parsed["joints"].as_array().unwrap() {
+        let channels = strings(&joint["channels"]);
+        let values = floats(&joint["values"][f]);
+        let mut position = Vec3::from_vec(floats(&joint["offset"]));
+        for (c, v) in channels.iter().zip(&values).filter(|(c, _)| c.ends_with("position")) {
+            position["XYZ".find(&c[..1]).unwrap()] = *v;
+        }
+        let local = Transform::new(rotation_from_channels(&channels, &values), position);
+        let parent = joint["parent"].as_str().map_or(Transform::IDENTITY, |p| world[p]);
+        world.insert(joint["name"].as_str().unwrap().to_string(), parent.compose(&local));
+    }
+    world
+}
+
+/// Writes the BVH of `model` under `motion` with `options`, reads it back with Python at `frames`.
+fn bvh_read_back(model: &Model, rec: &PlanRecord, options: &Options, tag: &str, frames: &[usize]) -> (serde_json::Value, String) {
+    let (name, bytes) = export_with(model, rec, Format::Bvh, options).unwrap();
     assert!(name.ends_with(".bvh"));
     let path = scratch(tag).join(name);
-    std::fs::write(&path, bytes).unwrap();
-    let frames = [0, 9, 26, 50];
-    let parsed = read_bvh_with_python(&path, &frames);
-    assert_eq!(parsed["frames"], 51);
-    assert_close(parsed["frame_time"].as_f64().unwrap(), 0.02, 1e-9, "frame time");
+    std::fs::write(&path, &bytes).unwrap();
+    (read_bvh_with_python(&path, frames), String::from_utf8(bytes).unwrap())
+}
+
+/// Every body's world placement at `q`, by the dynamics engine's forward kinematics (`data.oMi`).
+fn body_placements(model: &Model, q: &[f64]) -> Vec<Transform> {
+    let mut data = Data::new(model);
+    kinematics::placements(model, &mut data, q);
+    data.oMi.clone()
+}
+
+/// Checks, at `frames` (times `times[k]`), that every BVH joint's world position is the model's joint
+/// position `C·Wᵢ(q).t` (× `scale`, i the chain's last body) and its world rotation the chain body's turn from rest `C·G·Cᵀ` with
+/// `G = W(q)·W(0)ᵀ`, with q the plan's `q_at(t)`.
+fn assert_bvh_matches_the_model(
+    model: &Model,
+    parsed: &serde_json::Value,
+    frames: &[usize],
+    q_at: impl Fn(usize) -> Vec<f64>,
+    scale: f64,
+    tag: &str,
+) {
     let c = y_up();
-    for joint in parsed["joints"].as_array().unwrap().iter().skip(1) {
-        let name = joint["name"].as_str().unwrap();
-        let dofs = joints_named(model, name);
-        assert!(!dofs.is_empty(), "BVH joint {name} stands for no model joint");
-        let first = &model.joints[dofs[0]];
-        assert!(dofs.iter().all(|&i| model.joints[i].placement.rotation == Mat3::identity()));
-        let offset = Vec3::from_vec(floats(&joint["offset"]));
-        assert!((offset - c * first.placement.translation).norm() < 1e-6, "{name} offset {offset}");
-        let channels = strings(&joint["channels"]);
-        for (k, values) in frames.iter().zip(joint["values"].as_array().unwrap()) {
-            let values = floats(values);
-            let q = &rec.samples[*k].q;
-            let mut want = Mat3::identity();
-            let mut slide = Vec3::zeros();
-            for &i in &dofs {
-                match model.joints[i].kind {
-                    JointKind::Prismatic => slide += model.joints[i].axis * q[i - 1],
-                    _ => want *= axis_angle(&model.joints[i].axis, q[i - 1]),
-                }
-            }
-            let got = rotation_from_channels(&channels, &values);
-            assert!((got - c * want * c.transpose()).norm() < 1e-5, "{name} at frame {k}: channels {channels:?} = {values:?}");
-            if channels[0] == "Xposition" {
-                let position = Vec3::new(values[0], values[1], values[2]);
-                let want = c * (first.placement.translation + slide);
-                assert!((position - want).norm() < 1e-6, "{name} position at frame {k}: {position} vs {want}");
-            }
+    let rest = body_placements(model, &vec![0.0; model.nv()]);
+    for (f, &k) in frames.iter().enumerate() {
+        let bvh_world = bvh_forward_kinematics(parsed, f);
+        let world = body_placements(model, &q_at(k));
+        for (n, joint) in parsed["joints"].as_array().unwrap().iter().enumerate() {
+            let name = joint["name"].as_str().unwrap();
+            let chain = bvh_chain(model, name, n == 0);
+            let got = &bvh_world[name];
+            // The joints of a chain share one origin but for its slides: the head is its last body's origin.
+            let last = chain.last().copied().unwrap_or(0);
+            let want = c * world[last].translation * scale;
+            assert!((got.translation - want).norm() < 1e-4 * scale, "{tag}: {name} at frame {k}: {} vs {want}", got.translation);
+            let turn = c * world[last].rotation * rest[last].rotation.transpose() * c.transpose();
+            assert!((got.rotation - turn).norm() < 1e-5, "{tag}: {name}'s rotation at frame {k}");
         }
     }
+}
+
+/// Writes the BVH of `model` swinging (default options: centimetres, the plan's 50 Hz), reads it back with
+/// Python and checks the frame count and time and, by forward kinematics, every joint's world pose.
+fn check_bvh_round_trip(model: &Model, tag: &str) -> serde_json::Value {
+    let rec = record(model, &grid(1.0, 50), swing);
+    let frames = [0, 9, 26, 50];
+    let (parsed, _) = bvh_read_back(model, &rec, &Options::default(), tag, &frames);
+    assert_eq!(parsed["frames"], 51);
+    assert_close(parsed["frame_time"].as_f64().unwrap(), 0.02, 1e-9, "frame time");
+    assert_bvh_matches_the_model(model, &parsed, &frames, |k| rec.samples[k].q.clone(), 100.0, tag);
     parsed
 }
 
@@ -500,7 +626,8 @@ fn bvh_of_the_sagittal_human_holds_the_joint_angles_themselves() {
     let parsed = check_bvh_round_trip(&model, "bvh-sagittal");
     let joints = parsed["joints"].as_array().unwrap();
     assert_eq!(joints[0]["name"], model.bodies[0].name.as_str());
-    assert_eq!(strings(&joints[0]["channels"])[..3], ["Xposition", "Yposition", "Zposition"]);
+    // The feet stay on the ground: a root that never moves has no channels.
+    assert!(strings(&joints[0]["channels"]).is_empty());
     // Every joint turns about the model's ±y, which is BVH's ∓z: the Zrotation channel is ∓q in degrees.
     let rec = record(&model, &grid(1.0, 50), swing);
     for joint in &joints[1..] {
@@ -532,6 +659,143 @@ fn bvh_writes_euler_angles_for_a_tilted_axis_and_positions_for_a_prismatic_joint
     let parsed = check_bvh_round_trip(&tilted_and_sliding(), "bvh-tilted");
     let slide = parsed["joints"].as_array().unwrap().iter().find(|j| j["name"] == "slide").unwrap();
     assert_eq!(strings(&slide["channels"])[..3], ["Xposition", "Yposition", "Zposition"]);
+}
+
+/// Swing only the degrees of freedom named in `moving`; every other stays at 0.
+fn swing_only(model: &Model, moving: &[&str]) -> PlanRecord {
+    let idx: Vec<usize> = moving.iter().map(|n| model.dof_index(n).unwrap_or_else(|| panic!("no joint {n}"))).collect();
+    record(model, &grid(1.0, 50), |i, t| if idx.contains(&i) { swing(i, t) } else { [0.0; 4] })
+}
+
+fn channels_of(parsed: &serde_json::Value, name: &str) -> Vec<String> {
+    let joint = parsed["joints"].as_array().unwrap().iter().find(|j| j["name"] == name);
+    strings(&joint.unwrap_or_else(|| panic!("no BVH joint {name}"))["channels"])
+}
+
+#[test]
+fn bvh_of_the_whole_body_has_every_body_to_the_head_and_hands_and_its_forward_kinematics() {
+    let params = HumanParams::default();
+    for (model, tag) in [
+        (human_model(Structure::WholeBody), "bvh-whole"),
+        (human::build_free(Structure::WholeBody, params).unwrap(), "bvh-free"),
+        (human_model(Structure::Hanging), "bvh-hanging"),
+    ] {
+        let parsed = check_bvh_round_trip(&model, tag);
+        let names: Vec<&str> = parsed["joints"].as_array().unwrap().iter().map(|j| j["name"].as_str().unwrap()).collect();
+        let drawn = model.bodies.iter().filter(|b| b.inertia.mass > 0.0 || !b.shapes.is_empty()).count();
+        assert_eq!(names.len(), drawn, "{tag}: one BVH joint per body with mass or a drawing: {names:?}");
+        if tag != "bvh-hanging" {
+            for part in ["lumbar", "thoracic", "neck", "l_wrist", "r_wrist", "l_shoulder"] {
+                assert!(names.contains(&part), "{tag}: {part} missing from {names:?}");
+            }
+        }
+    }
+}
+
+#[test]
+fn bvh_gives_channels_only_to_the_joints_that_move() {
+    let model = human::build_free(Structure::WholeBody, HumanParams::default()).unwrap();
+    let rec = swing_only(&model, &["root_yaw", "l_knee", "r_shoulder_y"]);
+    let (parsed, _) = bvh_read_back(&model, &rec, &Options::default(), "bvh-still", &[0, 26, 50]);
+    assert_bvh_matches_the_model(&model, &parsed, &[0, 26, 50], |k| rec.samples[k].q.clone(), 100.0, "still joints");
+    let root = parsed["joints"][0]["name"].as_str().unwrap().to_string();
+    // The root turns but does not slide: three rotation channels, no positions.
+    assert_eq!(channels_of(&parsed, &root), ["Yrotation", "Xrotation", "Zrotation"]);
+    assert_eq!(channels_of(&parsed, "l_knee").len(), 3);
+    assert_eq!(channels_of(&parsed, "r_shoulder").len(), 3);
+    for joint in parsed["joints"].as_array().unwrap() {
+        let name = joint["name"].as_str().unwrap();
+        if ![root.as_str(), "l_knee", "r_shoulder"].contains(&name) {
+            assert!(strings(&joint["channels"]).is_empty(), "{name} never moves but has channels");
+        }
+    }
+    // One channel per moving DOF on request: the knee (about the model's y, BVH's −z) gets Zrotation only.
+    let per_dof = Options { channels: ChannelSet::PerDof, ..Options::default() };
+    let (parsed, _) = bvh_read_back(&model, &rec, &per_dof, "bvh-per-dof", &[0, 26, 50]);
+    assert_bvh_matches_the_model(&model, &parsed, &[0, 26, 50], |k| rec.samples[k].q.clone(), 100.0, "per dof");
+    assert_eq!(channels_of(&parsed, "l_knee"), ["Zrotation"]);
+    assert_eq!(channels_of(&parsed, &root), ["Yrotation"]);
+    // A root that slides gets its position channels first.
+    let rec = swing_only(&model, &["root_z", "l_knee"]);
+    let (parsed, _) = bvh_read_back(&model, &rec, &Options::default(), "bvh-slide", &[0, 26, 50]);
+    assert_bvh_matches_the_model(&model, &parsed, &[0, 26, 50], |k| rec.samples[k].q.clone(), 100.0, "sliding root");
+    assert_eq!(channels_of(&parsed, &root), ["Xposition", "Yposition", "Zposition"]);
+}
+
+#[test]
+fn bvh_frame_rate_and_length_unit_are_the_ones_asked_for() {
+    let model = human_model(Structure::Sagittal);
+    let rec = record(&model, &grid(1.0, 50), swing);
+    let options = Options { fps: Some(30.0), length: mintorque::report::export::LengthUnit::Metre, ..Options::default() };
+    let frames = [0, 7, 19, 30];
+    let (parsed, text) = bvh_read_back(&model, &rec, &options, "bvh-fps", &frames);
+    assert_eq!(parsed["frames"], 31);
+    assert_close(parsed["frame_time"].as_f64().unwrap(), 1.0 / 30.0, 1e-9, "frame time");
+    assert!(text.contains("Frame Time: 0.033333333"));
+    // Frame k is the motion at k/30 s, between the 50 Hz samples: resampled by the samples' q and q̇
+    // (a linear blend, off by up to ~5e-3 rad per joint here, would miss the 0.1 mm check by millimetres).
+    let exact = |k: usize| (0..model.nv()).map(|i| swing(i, k as f64 / 30.0)[0]).collect::<Vec<f64>>();
+    assert_bvh_matches_the_model(&model, &parsed, &frames, exact, 1.0, "30 fps, metres");
+    let (in_cm, _) = bvh_read_back(&model, &rec, &Options::default(), "bvh-cm", &[0]);
+    let metres = floats(&parsed["joints"][2]["offset"]);
+    let centimetres = floats(&in_cm["joints"][2]["offset"]);
+    assert!(metres[1] > 0.3 && (centimetres[1] - 100.0 * metres[1]).abs() < 1e-4, "{metres:?} vs {centimetres:?}");
+    for bad in [0.0, -30.0, f64::NAN] {
+        let err = export_with(&model, &rec, Format::Bvh, &Options { fps: Some(bad), ..Options::default() }).unwrap_err();
+        assert!(err.to_string().contains("frames per second"), "{err}");
+    }
+    let err = export_with(&model, &rec, Format::Csv, &Options { fps: Some(30.0), ..Options::default() }).unwrap_err();
+    assert!(err.to_string().contains("--fps") && err.to_string().contains("bvh only"), "{err}");
+}
+
+// ---- Export: CSV options ----
+
+fn csv_rows(text: &str) -> (Vec<String>, Vec<Vec<f64>>) {
+    let mut lines = text.lines();
+    let header = lines.next().unwrap().split(',').map(String::from).collect();
+    (header, lines.map(|l| l.split(',').map(|v| v.parse().unwrap()).collect()).collect())
+}
+
+#[test]
+fn csv_options_choose_the_angle_unit_columns_joints_and_rate() {
+    use mintorque::report::export::{AngleUnit, Column, CsvOptions};
+    let model = human_model(Structure::Sagittal);
+    let rec = record(&model, &grid(1.0, 50), swing);
+    let (knee, hip) = (model.dof_index("knee").unwrap(), model.dof_index("hip").unwrap());
+    let csv = |o: CsvOptions| {
+        let (_, bytes) = export_with(&model, &rec, Format::Csv, &Options { csv: o, ..Options::default() }).unwrap();
+        csv_rows(&String::from_utf8(bytes).unwrap())
+    };
+    let joints = vec!["hip".to_string(), "knee".to_string()];
+    let picked = CsvOptions { angles: AngleUnit::Radian, columns: vec![Column::Q, Column::Tau], joints, rate: Some(10.0) };
+    let (header, rows) = csv(picked.clone());
+    // Model order whatever the order asked; the unit in every name.
+    assert_eq!(header, ["time_s", "knee.q_rad", "knee.tau_Nm", "hip.q_rad", "hip.tau_Nm"]);
+    assert_eq!(rows.len(), 11);
+    for (r, row) in rows.iter().enumerate() {
+        let t = r as f64 / 10.0;
+        assert_close(row[0], t, 1e-9, "time");
+        assert_close(row[1], swing(knee, t)[0], 1e-8, "knee q in rad");
+        assert_close(row[4], swing(hip, t)[3], 1e-8, "hip torque");
+    }
+    // Degrees (the default) are the radians × 180/π; the default columns are all four per joint.
+    let (header, deg) = csv(CsvOptions { angles: AngleUnit::Degree, columns: Column::ALL.to_vec(), ..picked.clone() });
+    assert_eq!(header[1..5], ["knee.q_deg", "knee.qd_deg_s", "knee.qdd_deg_s2", "knee.tau_Nm"]);
+    assert_close(deg[3][1], rows[3][1].to_degrees(), 1e-6, "degrees");
+    assert!((deg[3][1] - rows[3][1]).abs() > 1e-3);
+    // At 30 rows per second the rows fall between the samples: q by the samples' q and q̇.
+    let (_, rows) = csv(CsvOptions { rate: Some(30.0), ..picked.clone() });
+    assert_eq!(rows.len(), 31);
+    for (r, row) in rows.iter().enumerate() {
+        assert_close(row[1], swing(knee, r as f64 / 30.0)[0], 1e-5, "knee q at 30 Hz");
+    }
+    let bad = CsvOptions { joints: vec!["neck".into()], ..picked.clone() };
+    let err = export_with(&model, &rec, Format::Csv, &Options { csv: bad, ..Options::default() }).unwrap_err();
+    assert!(err.to_string().contains("no joint \"neck\"") && err.to_string().contains("ankle, knee"), "{err}");
+    let err = Options::from_names(None, "cm", "joint", "deg", &["q".into(), "torque".into()], vec![], None).unwrap_err();
+    assert!(err.to_string().contains("unknown column \"torque\"") && err.to_string().contains("tau"), "{err}");
+    let err = Options::from_names(None, "inch", "joint", "deg", &[], vec![], None).unwrap_err();
+    assert!(err.to_string().contains("m, cm"), "{err}");
 }
 
 // ---- Plots ----

@@ -85,6 +85,28 @@ enum Command {
         /// Output file (default: inside DIR, named after the model).
         #[arg(long, short)]
         out: Option<PathBuf>,
+        /// bvh: frames per second (default: the plan's sample rate), resampled from the plan's samples.
+        #[arg(long)]
+        fps: Option<f64>,
+        /// bvh: length unit, cm (what BVH tools expect) or m.
+        #[arg(long, default_value = "cm")]
+        units: String,
+        /// bvh: channels per moving joint (three rotations, three positions: what Blender reads) or per
+        /// moving degree of freedom (dof).
+        #[arg(long, default_value = "joint")]
+        channels: String,
+        /// csv: angles of revolute joints in deg or rad (the header says which).
+        #[arg(long, default_value = "deg")]
+        angles: String,
+        /// csv: the quantities to write, of q,qd,qdd,tau,force (default: all).
+        #[arg(long, value_delimiter = ',')]
+        columns: Vec<String>,
+        /// csv: the joints to write, by name (default: all).
+        #[arg(long, value_delimiter = ',')]
+        joints: Vec<String>,
+        /// csv: rows per second, resampled (default: the plan's samples).
+        #[arg(long)]
+        rate: Option<f64>,
     },
     /// Open a plan directory's animation (motion.html) in the browser, regenerating its view files.
     View {
@@ -285,10 +307,11 @@ fn run_plan(
     Ok(summary.converged)
 }
 
-fn run_export(dir: &Path, format: &str, out: Option<PathBuf>) -> Result<()> {
+fn run_export(dir: &Path, format: &str, out: Option<PathBuf>, options: &report::export::Options) -> Result<()> {
     let format = report::export::Format::from_name(format)?;
+    options.check(format)?;
     let loaded = plan_dir::load(dir)?;
-    let (name, bytes) = report::export::export(&loaded.model, &loaded.record, format)?;
+    let (name, bytes) = report::export::export_with(&loaded.model, &loaded.record, format, options)?;
     let path = match out {
         Some(path) => {
             plan_dir::write_file(&path, &bytes)?;
@@ -382,7 +405,10 @@ fn run(cli: Cli) -> Result<ExitCode> {
             Ok(exit(run_plan(&task, &out, &overrides, warm_start.as_deref(), quiet, no_plots)?))
         }
         Command::Sweep { sweep: file, out, keep_plans, quiet } => Ok(exit(sweep::run(&file, &out, keep_plans, quiet)?)),
-        Command::Export { dir, format, out } => run_export(&dir, &format, out).map(|()| ExitCode::SUCCESS),
+        Command::Export { dir, format, out, fps, units, channels, angles, columns, joints, rate } => {
+            let options = report::export::Options::from_names(fps, &units, &channels, &angles, &columns, joints, rate)?;
+            run_export(&dir, &format, out, &options).map(|()| ExitCode::SUCCESS)
+        }
         Command::View { dir, filmstrip } => {
             let view = filmstrip
                 .map(|v| v.parse::<report::filmstrip::View>())

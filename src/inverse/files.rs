@@ -84,7 +84,7 @@ pub fn render(
     let r = &inverse.record;
     let mut files = BTreeMap::new();
     files.insert("inverse_dynamics.sto".to_string(), mot::torques_sto(model, r).into_bytes());
-    files.insert("inverse_dynamics.csv".to_string(), csv(model, r).into_bytes());
+    files.insert("inverse_dynamics.csv".to_string(), csv(model, r, &Default::default())?.into_bytes());
     files.insert("q_filtered.mot".to_string(), mot::mot(model, r).into_bytes());
     let loads = ergonomics::loads::series(model, r, &[])?;
     files.insert("joint_loads.csv".to_string(), ergonomics::loads::csv(model, r, &loads).into_bytes());

@@ -107,7 +107,7 @@ impl PlanContents {
         let mut put = |name: &str, bytes: Vec<u8>| files.insert(name.to_string(), bytes);
         put("plan.json", pretty(record)?);
         put("model.figure.toml", figure::to_toml(model).into_bytes());
-        put("trajectory.csv", report::export::csv::csv(model, record).into_bytes());
+        put("trajectory.csv", report::export::csv::csv(model, record, &Default::default())?.into_bytes());
         put("torques.sto", report::export::mot::torques_sto(model, record).into_bytes());
         if let Some(series) = &self.joint_loads {
             put("joint_loads.csv", ergonomics::loads::csv(model, record, series).into_bytes());

@@ -17,7 +17,6 @@ pub mod viewer;
 pub use summary::Summary;
 
 use crate::error::{Error, Result};
-use crate::model::JointKind;
 
 /// Sample times `0, 1/rate, …, T` (the end always included).
 pub fn sample_times(duration: f64, rate: f64) -> Vec<f64> {
@@ -44,12 +43,4 @@ pub(crate) fn check_samples(model: &crate::Model, record: &record::PlanRecord) -
         }
     }
     Ok(())
-}
-
-/// Column units of a joint: (position, velocity, acceleration, effort) suffixes and the factor from SI.
-pub(crate) fn units(kind: JointKind) -> ([&'static str; 4], f64) {
-    match kind {
-        JointKind::Prismatic => (["q_m", "qd_m_s", "qdd_m_s2", "tau_N"], 1.0),
-        _ => (["q_deg", "qd_deg_s", "qdd_deg_s2", "tau_Nm"], 180.0 / std::f64::consts::PI),
-    }
 }

@@ -7,6 +7,10 @@ pub mod bvh;
 pub mod csv;
 pub mod gltf;
 pub mod mot;
+pub mod resample;
+
+pub use bvh::ChannelSet;
+pub use csv::{AngleUnit, Column, CsvOptions};
 
 use super::record::PlanRecord;
 use crate::dynamics::kinematics::joint_transform;
@@ -17,9 +21,9 @@ use crate::spatial::Transform;
 /// The export formats.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Format {
-    /// Biovision hierarchy (`.bvh`), Y up, metres.
+    /// Biovision hierarchy (`.bvh`), Y up, centimetres (or metres).
     Bvh,
-    /// glTF 2.0 binary (`.glb`): the figure as simple meshes, animated.
+    /// glTF 2.0 binary (`.glb`): the figure as simple rigid meshes and as one skinned mesh, animated.
     Gltf,
     /// OpenSim motion file (`.mot`), joint angles in degrees.
     Mot,
@@ -84,18 +88,109 @@ impl std::str::FromStr for Format {
     }
 }
 
-/// The motion of `record` in `format`: the file name (the model's name with the format's extension) and
-/// its bytes.
+/// The length unit of a BVH file.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum LengthUnit {
+    /// Metres (`m`).
+    Metre,
+    /// Centimetres (`cm`),
+    /// what BVH tools expect.
+    #[default]
+    Centimetre,
+}
+
+impl LengthUnit {
+    /// `m` or `cm`.
+    pub fn from_name(name: &str) -> Result<LengthUnit> {
+        match name.trim() {
+            "m" => Ok(LengthUnit::Metre),
+            "cm" => Ok(LengthUnit::Centimetre),
+            other => Err(Error::input("export", "units", format!("unknown length unit \"{other}\"; known: m, cm"))),
+        }
+    }
+}
+
+/// The exporters' options; each applies to the formats its field names.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Options {
+    /// BVH: frames per second (`None`: the plan's sample rate).
+    pub fps: Option<f64>,
+    /// BVH: the length unit.
+    pub length: LengthUnit,
+    /// BVH: one channel per moving DOF or per joint.
+    pub channels: ChannelSet,
+    /// CSV: units, columns, joints and rate.
+    pub csv: CsvOptions,
+}
+
+impl Options {
+    /// The options as the command line names them: `units` m|cm, `channels` joint|dof, `angles`
+    /// deg|rad, `columns` of q, qd, qdd, tau, force (empty: all).
+    pub fn from_names(
+        fps: Option<f64>,
+        units: &str,
+        channels: &str,
+        angles: &str,
+        columns: &[String],
+        joints: Vec<String>,
+        rate: Option<f64>,
+    ) -> Result<Options> {
+        let channels = match channels.trim() {
+            "joint" => ChannelSet::PerJoint,
+            "dof" => ChannelSet::PerDof,
+            other => return Err(Error::input("export", "channels", format!("\"{other}\"; known: joint, dof"))),
+        };
+        let angles = match angles.trim() {
+            "deg" => AngleUnit::Degree,
+            "rad" => AngleUnit::Radian,
+            other => return Err(Error::input("export", "angles", format!("\"{other}\"; known: deg, rad"))),
+        };
+        let mut picked: Vec<Column> = columns.iter().map(|c| Column::from_name(c)).collect::<Result<_>>()?;
+        if picked.is_empty() {
+            picked = Column::ALL.to_vec();
+        }
+        // Written in the file's order whatever the order given: equal sets are equal options.
+        let columns = Column::ALL.into_iter().filter(|c| picked.contains(c)).collect();
+        let csv = CsvOptions { angles, columns, joints, rate };
+        Ok(Options { fps, length: LengthUnit::from_name(units)?, channels, csv })
+    }
+
+    /// Refuses options given for a format they do not apply to, naming the option.
+    pub fn check(&self, format: Format) -> Result<()> {
+        let defaults = Options::default();
+        let bvh_set = self.fps.is_some() || self.length != defaults.length || self.channels != defaults.channels;
+        let csv_set = self.csv != defaults.csv;
+        let refuse = |what: &str, applies: &str| {
+            Err(Error::input("export", what, format!("applies to --format {applies} only, not to {format}")))
+        };
+        match format {
+            Format::Bvh if csv_set => refuse("--angles/--columns/--joints/--rate", "csv"),
+            Format::Csv if bvh_set => refuse("--fps/--units/--channels", "bvh"),
+            Format::Gltf | Format::Mot | Format::Osim if bvh_set => refuse("--fps/--units/--channels", "bvh"),
+            Format::Gltf | Format::Mot | Format::Osim if csv_set => refuse("--angles/--columns/--joints/--rate", "csv"),
+            _ => Ok(()),
+        }
+    }
+}
+
+/// The motion of `record` in `format` with the default options: the file name (the model's name with
+/// the format's extension) and its bytes.
 pub fn export(model: &Model, record: &PlanRecord, format: Format) -> Result<(String, Vec<u8>)> {
+    export_with(model, record, format, &Options::default())
+}
+
+/// The motion of `record` in `format` with `options` (checked against the format).
+pub fn export_with(model: &Model, record: &PlanRecord, format: Format, options: &Options) -> Result<(String, Vec<u8>)> {
+    options.check(format)?;
     super::check_samples(model, record)?;
     if record.samples.is_empty() {
         return Err(Error::input("plan.json", "samples", "the plan holds no samples to export"));
     }
     let bytes = match format {
-        Format::Bvh => bvh::bvh(model, record)?.into_bytes(),
+        Format::Bvh => bvh::bvh(model, record, options)?.into_bytes(),
         Format::Gltf => gltf::glb(model, record)?,
         Format::Mot => mot::mot(model, record).into_bytes(),
-        Format::Csv => csv::csv(model, record).into_bytes(),
+        Format::Csv => csv::csv(model, record, &options.csv)?.into_bytes(),
         Format::Osim => crate::model::osim::to_osim(model).into_bytes(),
     };
     Ok((format!("{}.{}", file_stem(&record.model_name), format.extension()), bytes))
@@ -109,6 +204,11 @@ fn file_stem(name: &str) -> String {
     } else {
         stem
     }
+}
+
+/// Model (Z up) to BVH and glTF (Y up) axes: `(x, y, z) ↦ (x, z, −y)`, a rotation of −90° about x.
+pub(crate) fn to_y_up() -> crate::spatial::Mat3 {
+    crate::spatial::Mat3::new(1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, -1.0, 0.0)
 }
 
 /// Every body's placement in the world at `q` (forward kinematics without the dynamics workspace).

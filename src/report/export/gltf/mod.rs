@@ -9,9 +9,14 @@
 //!   in the body's frame; a body without shapes gets sticks from its origin to its children's joints
 //!   (or to twice its centre of mass for a leaf), so that every figure is visible. The massless bodies
 //!   between the revolutes of one anatomical joint have neither.
+//! - Besides the rigid parts, the same triangles as one skinned mesh ([`skin`]): a skin whose joints are
+//!   the body nodes, with inverse bind matrices, each vertex bound to its body's joint — what animation
+//!   tools import as an armature with a mesh. Viewers draw both, coinciding.
 //! - Units: metres, seconds; everything in one binary buffer.
 
-use super::children;
+mod skin;
+
+use super::{body_placements, children};
 use crate::error::{Error, Result};
 use crate::model::{JointKind, Model, Shape};
 use crate::report::record::PlanRecord;
@@ -39,25 +44,33 @@ pub fn glb(model: &Model, record: &PlanRecord) -> Result<Vec<u8>> {
     let children = children(model);
     let mut meshes = Vec::new();
     let mut mesh_of_body = vec![None; model.bodies.len()];
+    let mut geometries = Vec::new();
     for (b, mesh_of) in mesh_of_body.iter_mut().enumerate() {
         let (geometry, material) = body_geometry(model, &children, b);
         if !geometry.indices.is_empty() {
             *mesh_of = Some(meshes.len());
             meshes.push(mesh_json(&mut buffer, &model.bodies[b].name, &geometry, material));
         }
+        geometries.push(geometry);
     }
-    let nodes = nodes_json(model, &children, &mesh_of_body);
+    let rest = body_placements(model, &vec![0.0; model.nv()]);
+    let (skinned, skin) = skin::skinned_mesh(&mut buffer, &geometries, &rest, &record.model_name);
+    let mut nodes = nodes_json(model, &children, &mesh_of_body);
+    // The skinned mesh's node sits at the scene's root (glTF ignores its transform: the joints place it).
+    nodes.push(json!({ "name": format!("{} (skinned)", record.model_name), "mesh": meshes.len(), "skin": 0 }));
+    meshes.push(skinned);
     let animation = animation_json(&mut buffer, model, record, &times);
     let document = json!({
         "asset": { "version": "2.0", "generator": concat!("mintorque ", env!("CARGO_PKG_VERSION")) },
         "scene": 0,
-        "scenes": [{ "name": record.model_name, "nodes": [0] }],
+        "scenes": [{ "name": record.model_name, "nodes": [0, nodes.len() - 1] }],
         "nodes": nodes,
         "meshes": meshes,
         "materials": [
             { "name": "body", "pbrMetallicRoughness": { "baseColorFactor": [0.80, 0.66, 0.55, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.8 } },
             { "name": "stick", "pbrMetallicRoughness": { "baseColorFactor": [0.35, 0.40, 0.48, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.6 } },
         ],
+        "skins": [skin],
         "animations": [animation],
         "accessors": buffer.accessors,
         "bufferViews": buffer.views,
@@ -103,6 +116,15 @@ impl Buffer {
             accessor["max"] = json!(max);
         }
         self.accessors.push(accessor);
+        self.accessors.len() - 1
+    }
+
+    /// Unsigned 16-bit VEC4s (joint indices).
+    fn shorts(&mut self, data: &[[u16; 4]], target: Option<u32>) -> usize {
+        let bytes: Vec<u8> = data.iter().flatten().flat_map(|v| v.to_le_bytes()).collect();
+        let view = self.view(&bytes, target);
+        self.accessors
+            .push(json!({ "bufferView": view, "componentType": skin::UNSIGNED_SHORT, "count": data.len(), "type": "VEC4" }));
         self.accessors.len() - 1
     }
 
