@@ -123,6 +123,12 @@ impl PlanContents {
         for (name, bytes) in filmstrip(model, record, self.filmstrip_view, super::filmstrip_names(None))? {
             put(&name, bytes);
         }
+        // A 3D plan gets a front view beside the side (or top) one: the side view would hide its sideways part.
+        if self.filmstrip_view != View::Front && filmstrip::needs_front_view(model, record) {
+            for (name, bytes) in filmstrip(model, record, View::Front, super::filmstrip_names(Some(View::Front)))? {
+                put(&name, bytes);
+            }
+        }
         if self.plots {
             files.extend(report::plots::plots(model, record, self.guess.as_deref())?);
             if let Some(e) = &self.ergonomics {
