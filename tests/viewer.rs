@@ -381,7 +381,11 @@ fn writes_pages_for_the_browser_test() {
     let (model, rec) = human_record();
     let dp = double_pendulum();
     let dp_rec = record(&dp, 1.5, 76, 2.0, &[]);
-    for (name, model, rec) in [("human", &model, &rec), ("double-pendulum", &dp, &dp_rec)] {
+    // A revolute and a prismatic joint: the chart offers torque (N·m) and force (N) on separate axes.
+    let mut mixed = double_pendulum();
+    mixed.joints[2].kind = mintorque::model::JointKind::Prismatic;
+    let mixed_rec = record(&mixed, 1.5, 76, 0.3, &[]);
+    for (name, model, rec) in [("human", &model, &rec), ("double-pendulum", &dp, &dp_rec), ("mixed", &mixed, &mixed_rec)] {
         let dir = out.join(format!("synthetic-{name}"));
         write_plan_dir(&dir, model, rec);
         write_view_files(&dir).unwrap();
