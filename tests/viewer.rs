@@ -217,9 +217,12 @@ fn attr(e: &str, name: &str) -> Option<f64> {
     e[at..at + e[at..].find('"')?].parse().ok()
 }
 
+/// A frame's panel `[x, y, width, height]` and the points drawn in it.
+type PanelPoints = ([f64; 4], Vec<(f64, f64)>);
+
 /// Every drawn point of the figure in each frame of a filmstrip (sticks' and forces' ends, joint dots with
 /// their radius, outline corners), with the frame's panel `[x, y, width, height]`.
-fn frame_points(svg: &str) -> Vec<([f64; 4], Vec<(f64, f64)>)> {
+fn frame_points(svg: &str) -> Vec<PanelPoints> {
     svg.split("<g class=\"frame\"")
         .skip(1)
         .map(|frame| {
