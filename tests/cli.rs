@@ -241,6 +241,23 @@ fn overrides_reach_the_resolved_task_so_simulate_can_reload_the_plan() {
 }
 
 #[test]
+fn writing_the_outputs_shows_its_stages_on_stderr_not_stdout_and_not_with_quiet() {
+    let dir = scratch("writing-progress");
+    let task = double_pendulum_task(&dir, "task.toml", "");
+    let (code, stdout, stderr) = run(mintorque().args(["plan", "--out"]).arg(dir.join("out")).arg(&task));
+    assert_eq!(code, 0, "{stderr}");
+    // Not a terminal: a plain line per stage, counted, the plots among them, the saving last.
+    let lines: Vec<&str> = stderr.lines().filter(|l| l.starts_with("writing outputs ")).collect();
+    assert!(lines.len() >= 5 && lines.iter().any(|l| l.contains("motion plots")), "{stderr}");
+    let n = lines.len();
+    assert_eq!(lines[n - 1], format!("writing outputs {n}/{n}: saving the files …"), "{stderr}");
+    assert!(!stdout.contains("writing outputs") && stdout.contains("results in"), "{stdout}");
+    let (code, stdout, stderr) = run(mintorque().args(["plan", "--quiet", "--out"]).arg(dir.join("out")).arg(&task));
+    assert_eq!(code, 0, "{stderr}");
+    assert!(!stderr.contains("writing outputs") && !stdout.contains("writing outputs"), "{stderr}");
+}
+
+#[test]
 fn the_filmstrip_follows_the_task_and_other_views_go_beside_it() {
     let dir = scratch("filmstrip");
     let task = double_pendulum_task(&dir, "task.toml", "[output]\nplots = false\nfilmstrip_view = \"top\"");

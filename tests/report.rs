@@ -831,7 +831,7 @@ fn plots_draw_every_joint_with_the_guess_dashed_and_the_strength_band() {
         "tau.svg lacks a part"
     );
     assert!(tau.contains("opacity=\"0.12\" fill=\"#3CA05A\""), "the strength band is not shaded");
-    assert!(svg("q.svg").contains("elbow (deg)"));
+    assert!(svg("q.svg").contains("elbow (°)") && svg("q.svg").contains("angle (°)"));
     assert!(svg("contact_forces.svg").contains("grip (N, world axes)"));
 
     // Without a guess there is no dashed curve; a limit far beyond the torques is named, not drawn.
@@ -840,6 +840,94 @@ fn plots_draw_every_joint_with_the_guess_dashed_and_the_strength_band() {
     let tau = &svgs.iter().find(|(n, _)| n == "tau.svg").unwrap().1;
     assert!(!tau.contains("initial guess") && tau.contains("off scale") && !tau.contains("opacity=\"0.12\" fill=\"#3CA05A\""));
     assert_eq!(svgs.len(), 5);
+}
+
+/// The numbers of an SVG attribute list `points="x,y x,y …"`, as points.
+fn svg_points(element: &str) -> Vec<(f64, f64)> {
+    let Some(start) = element.find("points=\"") else { return vec![] };
+    let list = &element[start + 8..];
+    let list = &list[..list.find('"').unwrap()];
+    list.split_whitespace()
+        .map(|p| {
+            let (x, y) = p.split_once(',').unwrap();
+            (x.parse().unwrap(), y.parse().unwrap())
+        })
+        .collect()
+}
+
+/// Every `<polyline>` of `svg` whose stroke is `colour`, as its points.
+fn polylines(svg: &str, colour: &str) -> Vec<Vec<(f64, f64)>> {
+    svg.split("<polyline").skip(1).filter(|e| e.contains(&format!("stroke=\"{colour}\""))).map(svg_points).collect()
+}
+
+/// The plotting areas of a plotters SVG, `[left, top, right, bottom]`: each panel's y axis (a long vertical
+/// black line) and x axis (a long horizontal one below it).
+fn plot_areas(svg: &str) -> Vec<[f64; 4]> {
+    let axes = polylines(svg, "#000000");
+    let vertical = axes.iter().filter(|p| p.len() == 2 && p[0].0 == p[1].0 && (p[0].1 - p[1].1).abs() > 50.0);
+    vertical
+        .map(|y_axis| {
+            let (top, bottom) = (y_axis[0].1.min(y_axis[1].1), y_axis[0].1.max(y_axis[1].1));
+            let x_axis = axes
+                .iter()
+                .find(|p| p.len() == 2 && p[0].1 == p[1].1 && (p[0].1 - bottom).abs() <= 2.0 && p[1].0 - p[0].0 > 100.0)
+                .expect("an x axis under the y axis");
+            [y_axis[0].0, top, x_axis[1].0, bottom]
+        })
+        .collect()
+}
+
+/// The legend box of a plot: the one rectangle filled with the legend's colour, `[left, top, right, bottom]`.
+fn legend_box(svg: &str) -> [f64; 4] {
+    let rect = svg.split("<rect").find(|e| e.contains("fill=\"#FAFAF6\"")).expect("a legend box");
+    let attr = |name: &str| -> f64 {
+        let at = rect.find(&format!(" {name}=\"")).unwrap() + name.len() + 3;
+        rect[at..at + rect[at..].find('"').unwrap()].parse().unwrap()
+    };
+    [attr("x"), attr("y"), attr("x") + attr("width"), attr("y") + attr("height")]
+}
+
+#[test]
+fn the_plan_sets_the_torque_scale_and_the_legend_sits_outside_every_panel() {
+    // A pendulum-like plan: |τ| ≤ 0.1 N·m, its guess 1000 times larger. Scaled to hold the guess the plan
+    // would be a flat line (0.1 % of the axis); scaled to the plan it fills the axis, the guess cut.
+    let model = one_joint(1000.0);
+    let rec = record(&model, &grid(1.0, 100), |_, t| [t, 1.0, 0.0, 0.1 * (2.0 * PI * t).sin()]);
+    let guess = record(&model, &grid(1.0, 100), |_, t| [t, 1.0, 0.0, 100.0 * (2.0 * PI * t).sin()]).samples;
+    let svgs = plot_svgs(&model, &rec, Some(&guess)).unwrap();
+    let tau = &svgs.iter().find(|(n, _)| n == "tau.svg").unwrap().1;
+    let [area] = plot_areas(tau)[..] else { panic!("one panel expected") };
+    let planned: Vec<(f64, f64)> = polylines(tau, "#1F5AAA").concat();
+    let span = |pts: &[(f64, f64)]| {
+        pts.iter().map(|p| p.1).fold(f64::NEG_INFINITY, f64::max) - pts.iter().map(|p| p.1).fold(f64::INFINITY, f64::min)
+    };
+    let share = span(&planned) / (area[3] - area[1]);
+    assert!(share > 0.8, "the plan spans {:.0} % of the axis height", 100.0 * share);
+    // The guess is drawn, cut to the axis, and the caption and legend say so.
+    // The legend box lies above the panel: it shares no pixel with the plotting area.
+    let legend = legend_box(tau);
+    assert!(legend[3] < area[1], "legend {legend:?} overlaps the plot area {area:?}");
+    let dashed: Vec<(f64, f64)> = polylines(tau, "#C84628").concat().into_iter().filter(|p| p.1 > legend[3]).collect();
+    assert!(dashed.len() > 10 && dashed.iter().all(|p| p.1 >= area[1] - 1.0 && p.1 <= area[3] + 1.0), "{dashed:?}");
+    assert!(tau.contains("guess cut at the plan") && tau.contains("cut where it leaves the plan"));
+
+    // Twelve joints: every panel's plotting area is clear of the legend, and every axis is labelled with units.
+    let many = human_model(Structure::Sagittal);
+    let rec = record(&many, &grid(1.0, 50), swing);
+    for (name, svg) in plot_svgs(&many, &rec, Some(&rec.samples.clone())).unwrap() {
+        let (areas, legend) = (plot_areas(&svg), legend_box(&svg));
+        assert_eq!(areas.len(), many.nv(), "{name}");
+        assert!(areas.iter().all(|a| legend[3] < a[1] || legend[1] > a[3]), "{name}: the legend overlaps a panel");
+        let axis = ["angle (°)", "angular velocity (°/s)", "angular acceleration (°/s²)", "torque (N·m)"];
+        assert!(axis.iter().any(|a| svg.matches(a).count() == many.nv()), "{name} lacks a unit on an axis");
+        assert_eq!(svg.matches("time (s)").count(), many.nv(), "{name}");
+    }
+    // A prismatic joint's panels are in metres and newtons, beside the revolute ones in degrees and N·m.
+    let mixed = tilted_and_sliding();
+    let rec = record(&mixed, &grid(1.0, 20), swing);
+    let svgs = plot_svgs(&mixed, &rec, None).unwrap();
+    let tau = &svgs.iter().find(|(n, _)| n == "tau.svg").unwrap().1;
+    assert!(tau.contains("force (N)") && tau.matches("torque (N·m)").count() == 2 && !tau.contains("N·m or N"));
 }
 
 // ---- Bad input ----

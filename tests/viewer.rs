@@ -6,7 +6,7 @@ use mintorque::dynamics::{kinematics, Data};
 use mintorque::model::human::{HumanParams, Structure};
 use mintorque::model::{urdf, Model};
 use mintorque::plan_dir::{self, PlanContents, WriteOptions};
-use mintorque::report::filmstrip::{filmstrip_png, filmstrip_svg, View};
+use mintorque::report::filmstrip::{filmstrip_png, filmstrip_svg, needs_front_view, View};
 use mintorque::report::record::{ContactRecord, PlanRecord, SampleRecord, FORMAT};
 use mintorque::report::viewer::{embedded_data, file_url, motion_html, VIEW_FILES};
 use std::path::{Path, PathBuf};
@@ -211,6 +211,104 @@ fn filmstrip_png_is_a_png() {
     assert!(png.len() > 1000);
 }
 
+/// The value of attribute `name` in element text `e`.
+fn attr(e: &str, name: &str) -> Option<f64> {
+    let at = e.find(&format!(" {name}=\""))? + name.len() + 3;
+    e[at..at + e[at..].find('"')?].parse().ok()
+}
+
+/// A frame's panel `[x, y, width, height]` and the points drawn in it.
+type PanelPoints = ([f64; 4], Vec<(f64, f64)>);
+
+/// Every drawn point of the figure in each frame of a filmstrip (sticks' and forces' ends, joint dots with
+/// their radius, outline corners), with the frame's panel `[x, y, width, height]`.
+fn frame_points(svg: &str) -> Vec<PanelPoints> {
+    svg.split("<g class=\"frame\"")
+        .skip(1)
+        .map(|frame| {
+            let panel = frame.split("<rect class=\"panel\"").nth(1).expect("a panel rectangle");
+            let rect = ["x", "y", "width", "height"].map(|n| attr(panel, n).unwrap());
+            let mut points = vec![];
+            for e in frame.split('<').filter(|e| e.contains("class=\"stick\"") || e.contains("class=\"force\"")) {
+                let [x1, y1, x2, y2] = ["x1", "y1", "x2", "y2"].map(|n| attr(e, n).unwrap());
+                points.extend([(x1, y1), (x2, y2)]);
+            }
+            for e in frame.split('<').filter(|e| e.starts_with("circle class=\"joint\"")) {
+                let ([x, y], r) = (["cx", "cy"].map(|n| attr(e, n).unwrap()), attr(e, "r").unwrap());
+                points.extend([(x - r, y - r), (x + r, y + r)]);
+            }
+            for e in frame.split("<polygon points=\"").skip(1) {
+                let list = &e[..e.find('"').unwrap()];
+                points.extend(list.split_whitespace().map(|p| {
+                    let (x, y) = p.split_once(',').unwrap();
+                    (x.parse::<f64>().unwrap(), y.parse::<f64>().unwrap())
+                }));
+            }
+            (rect, points)
+        })
+        .collect()
+}
+
+#[test]
+fn every_part_of_the_figure_stays_inside_its_panel_with_a_margin() {
+    let pendulum = urdf::load(&repo().join("models/pendulum.urdf")).unwrap();
+    let cases = [
+        (pendulum.clone(), record(&pendulum, 1.0, 41, 2.5, &[])),
+        (double_pendulum(), record(&double_pendulum(), 1.0, 41, 2.0, &[])),
+        human_record(),
+    ];
+    for (model, rec) in &cases {
+        for view in [View::Side, View::Front, View::Top] {
+            let svg = filmstrip_svg(model, rec, 8, view);
+            let mut nearest = f64::INFINITY;
+            for (k, ([x, y, w, h], points)) in frame_points(&svg).into_iter().enumerate() {
+                assert!(!points.is_empty(), "{} {view:?} frame {k}: nothing drawn", model.name);
+                for (px, py) in points {
+                    let margin = (px - x).min(x + w - px).min(py - y).min(y + h - py);
+                    assert!(
+                        margin >= 8.0,
+                        "{} {view:?} frame {k}: ({px}, {py}) is {margin:.1} px from its panel's edge",
+                        model.name
+                    );
+                    nearest = nearest.min(margin);
+                }
+            }
+            // The figure fills its panels: something comes within the margin's reach of an edge.
+            assert!(nearest < 20.0, "{} {view:?}: the figure keeps {nearest:.1} px from every edge", model.name);
+            // The legend names the joint dots' colours, below every panel.
+            let legend_y = attr(svg.split("<g class=\"legend\"").nth(1).unwrap(), "y").unwrap();
+            assert!(svg.contains("|τ| / strength") && svg.contains("url(#joint-load)"));
+            assert!(frame_points(&svg).iter().all(|([_, y, _, h], _)| y + h < legend_y));
+        }
+    }
+}
+
+#[test]
+fn a_front_filmstrip_goes_beside_the_side_one_for_a_3d_plan_only() {
+    let whole = Structure::WholeBody.build(HumanParams::default()).unwrap();
+    let planar = [double_pendulum(), urdf::load(&repo().join("models/pendulum.urdf")).unwrap(), human()];
+    let whole_rec = record(&whole, 1.0, 11, 0.3, &[]);
+    assert!(needs_front_view(&whole, &whole_rec), "the whole body spreads sideways");
+    for model in &planar {
+        assert!(!needs_front_view(model, &record(model, 1.0, 11, 1.0, &[])), "{} is planar", model.name);
+    }
+    for (model, rec, front) in
+        [(whole.clone(), whole_rec, true), (planar[0].clone(), record(&planar[0], 1.0, 11, 1.0, &[]), false)]
+    {
+        let dir = scratch(&format!("front-{}", model.name));
+        write_plan_dir(&dir, &model, &rec);
+        let loaded = plan_dir::load(&dir).unwrap();
+        for name in ["filmstrip-front.svg", "filmstrip-front.png"] {
+            assert_eq!(loaded.manifest.files.contains_key(name), front, "{}: {name}", model.name);
+            assert_eq!(dir.join(name).exists(), front, "{}: {name}", model.name);
+        }
+        assert!(loaded.manifest.files.contains_key("filmstrip.svg"));
+        if front {
+            assert!(std::fs::read_to_string(dir.join("filmstrip-front.svg")).unwrap().contains("front view"));
+        }
+    }
+}
+
 /// Writes a plan directory of a hand-made record through `plan_dir`, as `mintorque plan` would.
 fn write_plan_dir(dir: &Path, model: &Model, rec: &PlanRecord) {
     plan_dir::write(dir, &PlanContents::from_record(model.clone(), rec.clone()), &WriteOptions::default()).unwrap();
@@ -286,7 +384,11 @@ fn writes_pages_for_the_browser_test() {
     let (model, rec) = human_record();
     let dp = double_pendulum();
     let dp_rec = record(&dp, 1.5, 76, 2.0, &[]);
-    for (name, model, rec) in [("human", &model, &rec), ("double-pendulum", &dp, &dp_rec)] {
+    // A revolute and a prismatic joint: the chart offers torque (N·m) and force (N) on separate axes.
+    let mut mixed = double_pendulum();
+    mixed.joints[2].kind = mintorque::model::JointKind::Prismatic;
+    let mixed_rec = record(&mixed, 1.5, 76, 0.3, &[]);
+    for (name, model, rec) in [("human", &model, &rec), ("double-pendulum", &dp, &dp_rec), ("mixed", &mixed, &mixed_rec)] {
         let dir = out.join(format!("synthetic-{name}"));
         write_plan_dir(&dir, model, rec);
         write_view_files(&dir).unwrap();

@@ -283,7 +283,12 @@ fn run_plan(
     }
     let planned = solve(&mut task, quiet)?;
     let contents = PlanContents::from_task(&task, &planned, no_plots)?;
-    plan_dir::write(out, &contents, &WriteOptions::default())?;
+    let (bar, mut report) = progress::writing(quiet);
+    let written = plan_dir::write_reporting(out, &contents, &WriteOptions::default(), &mut report);
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    written?;
     let (summary, ergonomics) = (contents.summary.as_ref().context("a planned task has a summary")?, &contents.ergonomics);
     if !quiet {
         print!("{}", report::summary::text_table(summary));

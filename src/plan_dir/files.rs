@@ -100,33 +100,67 @@ impl PlanContents {
 
     /// Every file of the plan directory but the manifest, by name.
     pub fn render(&self) -> Result<BTreeMap<String, Vec<u8>>> {
+        self.render_reporting(&mut |_, _, _| {})
+    }
+
+    /// The stages of [`PlanContents::render`], in order: what each makes.
+    pub fn stages(&self) -> Vec<&'static str> {
+        let mut stages = vec!["plan data and tables", "3D viewer", "filmstrip"];
+        if self.filmstrip_view != View::Front && filmstrip::needs_front_view(&self.model, &self.record) {
+            stages.push("front filmstrip");
+        }
+        if self.plots {
+            stages.push("motion plots");
+            if self.ergonomics.is_some() {
+                stages.push("ergonomic plots");
+            }
+        }
+        stages
+    }
+
+    /// [`PlanContents::render`], calling `progress(k, n, stage)` before each of its `n` stages (see
+    /// [`PlanContents::stages`]; `k` counts from 1).
+    pub fn render_reporting(&self, progress: &mut dyn FnMut(usize, usize, &str)) -> Result<BTreeMap<String, Vec<u8>>> {
         let (model, record) = (&self.model, &self.record);
         report::check_samples(model, record)?;
         crate::report::scene::check_record(model, record).map_err(|m| crate::Error::input("plan", "samples", m))?;
+        let stages = self.stages();
+        // Stage k of n begins: report it.
+        let mut done = 0;
+        let mut next = || {
+            progress(done + 1, stages.len(), stages[done]);
+            done += 1;
+        };
         let mut files = BTreeMap::new();
-        let mut put = |name: &str, bytes: Vec<u8>| files.insert(name.to_string(), bytes);
-        put("plan.json", pretty(record)?);
-        put("model.figure.toml", figure::to_toml(model).into_bytes());
-        put("trajectory.csv", report::export::csv::csv(model, record, &Default::default())?.into_bytes());
-        put("torques.sto", report::export::mot::torques_sto(model, record).into_bytes());
+        next();
+        files.insert("plan.json".to_string(), pretty(record)?);
+        files.insert("model.figure.toml".to_string(), figure::to_toml(model).into_bytes());
+        files.insert("trajectory.csv".to_string(), report::export::csv::csv(model, record, &Default::default())?.into_bytes());
+        files.insert("torques.sto".to_string(), report::export::mot::torques_sto(model, record).into_bytes());
         if let Some(series) = &self.joint_loads {
-            put("joint_loads.csv", ergonomics::loads::csv(model, record, series).into_bytes());
+            files.insert("joint_loads.csv".to_string(), ergonomics::loads::csv(model, record, series).into_bytes());
         }
         let summary_text = self.summary_json()?.as_ref().map(pretty_text).transpose()?;
         if let Some(text) = &summary_text {
-            put("summary.json", text.clone().into_bytes());
+            files.insert("summary.json".to_string(), text.clone().into_bytes());
         }
         if let Some(t) = &self.resolved_task {
-            put("task.resolved.toml", t.clone().into_bytes());
+            files.insert("task.resolved.toml".to_string(), t.clone().into_bytes());
         }
-        let (name, html) = motion_html(model, record, summary_text.as_deref());
-        put(&name, html);
-        for (name, bytes) in filmstrip(model, record, self.filmstrip_view, super::filmstrip_names(None))? {
-            put(&name, bytes);
+        next();
+        files.extend([motion_html(model, record, summary_text.as_deref())]);
+        next();
+        files.extend(filmstrip(model, record, self.filmstrip_view, super::filmstrip_names(None))?);
+        // A 3D plan gets a front view beside the side (or top) one: the side view would hide its sideways part.
+        if stages.contains(&"front filmstrip") {
+            next();
+            files.extend(filmstrip(model, record, View::Front, super::filmstrip_names(Some(View::Front)))?);
         }
         if self.plots {
+            next();
             files.extend(report::plots::plots(model, record, self.guess.as_deref())?);
             if let Some(e) = &self.ergonomics {
+                next();
                 files.extend(ergonomics::plots::plots(model, record, self.joint_loads.as_ref(), e)?);
             }
         }

@@ -101,8 +101,21 @@ impl LoadedPlan {
 /// Writes the plan `contents` as the whole of directory `dir` (created if needed; an existing plan
 /// directory is replaced, files of the old plan included; any other non-empty directory is refused).
 pub fn write(dir: &Path, contents: &PlanContents, options: &WriteOptions) -> Result<()> {
+    write_reporting(dir, contents, options, &mut |_, _, _| {})
+}
+
+/// [`write`], calling `progress(k, n, stage)` before each of the `n` stages of rendering the files (see
+/// [`PlanContents::stages`]) and once more, as stage `n + 1` of `n + 1`, before saving them.
+pub fn write_reporting(
+    dir: &Path,
+    contents: &PlanContents,
+    options: &WriteOptions,
+    progress: &mut dyn FnMut(usize, usize, &str),
+) -> Result<()> {
     finite::check_contents(contents)?;
-    let files = contents.render()?;
+    let n = contents.stages().len() + 1;
+    let files = contents.render_reporting(&mut |k, _, stage| progress(k, n, stage))?;
+    progress(n, n, "saving the files");
     atomic::Writer::begin(dir)?.commit(&files, options)
 }
 

@@ -10,16 +10,23 @@ use crate::error::Result;
 use crate::model::{Model, Shape};
 pub use crate::plan::task::View;
 use crate::spatial::Vec3;
-use std::fmt::Write as _;
 
+mod draw;
+mod legend;
 mod solids;
+mod views;
+
+pub use views::needs_front_view;
 
 /// Panel height the figure is scaled to (px), and the widest a panel may get.
 const FIGURE_HEIGHT: f64 = 240.0;
 const MAX_PANEL_WIDTH: f64 = 360.0;
 /// Widest a row of panels may get before the filmstrip wraps (px).
 const MAX_WIDTH: f64 = 1600.0;
-const PAD: f64 = 14.0;
+/// Margin around the figure inside its panel (px): more than the widest stroke or joint dot reaches.
+const PAD: f64 = 18.0;
+/// Height of the legend row under the panels (px).
+const LEGEND: f64 = 30.0;
 const HEADER: f64 = 24.0;
 const LABEL: f64 = 24.0;
 const FONT: &str = "DejaVu Sans, Helvetica, Arial, sans-serif";
@@ -78,7 +85,14 @@ pub fn filmstrip_svg(model: &Model, record: &PlanRecord, frames: usize, view: Vi
     let mut data = Data::new(model);
     let poses: Vec<Pose> = times.iter().map(|&t| poser.pose_at(&mut data, t)).collect();
     let scenery = scenery(record, view);
-    Layout::new(&poses, &scenery).svg(model, record, &poses, &scenery, view, label_decimals(record.duration, frames))
+    Layout::new(&poses, &scenery, weight(model, record)).svg(
+        model,
+        record,
+        &poses,
+        &scenery,
+        view,
+        label_decimals(record.duration, frames),
+    )
 }
 
 /// Enough decimals that neighbouring frames' labels differ.
@@ -239,10 +253,13 @@ struct Layout {
     panel_w: f64,
     figure_h: f64,
     columns: usize,
+    /// Length of a force arrow per newton (m): the figure's weight is a quarter of the figure's height.
+    metres_per_newton: f64,
 }
 
 impl Layout {
-    fn new(poses: &[Pose], scenery: &Scenery) -> Layout {
+    /// The layout of `poses` over `scenery`, force arrows scaled to the figure's `weight` (N).
+    fn new(poses: &[Pose], scenery: &Scenery, weight: f64) -> Layout {
         let frames = poses.len().max(1);
         let mut b = [f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY];
         let mut grow = |r: [f64; 4]| b = [b[0].min(r[0]), b[1].min(r[1]), b[2].max(r[2]), b[3].max(r[3])];
@@ -256,6 +273,12 @@ impl Layout {
         if !b[0].is_finite() {
             b = [-0.5, -0.5, 0.5, 0.5];
         }
+        // Force arrows, a quarter of the figure's height per weight, stay inside the panel too: tip = at + f·m/N.
+        let metres_per_newton = 0.25 * (b[3] - b[1]).max(0.1) / weight;
+        for (at, f) in poses.iter().flat_map(|p| &p.forces) {
+            let tip = [at[0] + f[0] * metres_per_newton, at[1] + f[1] * metres_per_newton];
+            b = [b[0].min(tip[0]), b[1].min(tip[1]), b[2].max(tip[0]), b[3].max(tip[1])];
+        }
         // A figure that hangs below the ground (a pendulum from the world origin) keeps the ground in view
         // only when it stands on it.
         if let Some(g) = scenery.ground {
@@ -268,9 +291,10 @@ impl Layout {
         let scale = (FIGURE_HEIGHT / h).min(MAX_PANEL_WIDTH / w);
         let panel_w = w * scale + 2.0 * PAD;
         let rows = ((frames as f64 * panel_w / MAX_WIDTH).ceil() as usize).clamp(1, frames);
-        Layout { bounds: b, scale, panel_w, figure_h: h * scale, columns: frames.div_ceil(rows) }
+        Layout { bounds: b, scale, panel_w, figure_h: h * scale, columns: frames.div_ceil(rows), metres_per_newton }
     }
 
+    /// A panel's height: margins, the figure, the time label.
     fn panel_h(&self) -> f64 {
         2.0 * PAD + self.figure_h + LABEL
     }
@@ -285,186 +309,6 @@ impl Layout {
         let [x0, y0] = self.origin(k);
         [x0 + PAD + (p[0] - self.bounds[0]) * self.scale, y0 + PAD + (self.bounds[3] - p[1]) * self.scale]
     }
-
-    fn svg(&self, model: &Model, record: &PlanRecord, poses: &[Pose], scenery: &Scenery, view: View, decimals: usize) -> String {
-        let rows = poses.len().div_ceil(self.columns);
-        let width = self.panel_w * self.columns.min(poses.len()) as f64;
-        let height = HEADER + rows as f64 * self.panel_h();
-        let mut s = String::new();
-        let _ = writeln!(
-            s,
-            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width:.0}" height="{height:.0}" viewBox="0 0 {width:.2} {height:.2}">"#
-        );
-        let _ = writeln!(s, r##"<rect width="100%" height="100%" fill="#ffffff"/>"##);
-        let title = format!(
-            "{} — {} view, {} frames over {:.3} s{}",
-            model.name,
-            view.name(),
-            poses.len(),
-            record.duration,
-            if record.converged { "" } else { " (NOT converged)" }
-        );
-        let _ = writeln!(
-            s,
-            r##"<text x="{PAD}" y="17" font-family="{FONT}" font-size="13" fill="#5b6b7c">{}</text>"##,
-            xml_escape(&title)
-        );
-        // Forces are drawn relative to the figure's weight: the weight is a quarter of the figure's height.
-        let per_newton = self.figure_h * 0.25 / weight(model, record);
-        for (k, pose) in poses.iter().enumerate() {
-            self.frame(&mut s, k, pose, scenery, per_newton, decimals);
-        }
-        s.push_str("</svg>\n");
-        s
-    }
-
-    fn frame(&self, s: &mut String, k: usize, pose: &Pose, scenery: &Scenery, per_newton: f64, decimals: usize) {
-        let _ = writeln!(s, r#"<g class="frame" id="frame-{k}" data-t="{:.6}">"#, pose.t);
-        let [x0, y0] = self.origin(k);
-        if !k.is_multiple_of(self.columns) {
-            let _ = writeln!(
-                s,
-                r##"<line x1="{x0:.2}" y1="{y0:.2}" x2="{x0:.2}" y2="{:.2}" stroke="#e3e8ee"/>"##,
-                y0 + 2.0 * PAD + self.figure_h
-            );
-        }
-        if let Some(g) = scenery.ground {
-            let y = self.px(k, &[0.0, g])[1];
-            let _ = writeln!(
-                s,
-                r##"<line x1="{:.2}" y1="{y:.2}" x2="{:.2}" y2="{y:.2}" stroke="#9aa5b1" stroke-width="1.5"/>"##,
-                x0 + 4.0,
-                x0 + self.panel_w - 4.0
-            );
-        }
-        if let Some(p) = &scenery.support {
-            self.support(s, k, p);
-        }
-        for t in &scenery.targets {
-            let [x, y] = self.px(k, t);
-            let _ =
-                writeln!(s, r#"<path d="M{:.2},{:.2}l8,8m0,-8l-8,8" stroke="{FORCE}" stroke-width="1.5"/>"#, x - 4.0, y - 4.0);
-        }
-        for (at, along) in &scenery.planes {
-            self.plane(s, k, at, along);
-        }
-        for p in &pose.parts {
-            self.part(s, k, p);
-        }
-        pose.collision.iter().for_each(|p| self.collision_outline(s, k, p));
-        for (p, colour) in &pose.joints {
-            let [x, y] = self.px(k, p);
-            let _ = writeln!(
-                s,
-                r#"<circle class="joint" cx="{x:.2}" cy="{y:.2}" r="3.5" fill="{colour}" stroke="{OUTLINE}" stroke-width="0.8"/>"#
-            );
-        }
-        for (at, f) in &pose.forces {
-            self.arrow(s, k, at, f, per_newton);
-        }
-        // Obstacles last: a bar the hands hold shows over them and their joint markers.
-        let _ = writeln!(s, r#"<g class="obstacle">"#);
-        scenery.obstacles.iter().for_each(|p| self.obstacle(s, k, p));
-        s.push_str("</g>\n");
-        let _ = writeln!(
-            s,
-            r##"<text class="time" x="{:.2}" y="{:.2}" font-family="{FONT}" font-size="14" text-anchor="middle" fill="#1d2733">t = {:.decimals$} s</text>"##,
-            x0 + self.panel_w / 2.0,
-            y0 + 2.0 * PAD + self.figure_h + 16.0,
-            pose.t
-        );
-        s.push_str("</g>\n");
-    }
-
-    /// A body part: a light shape with a dark outline, or a dark stick.
-    fn part(&self, s: &mut String, k: usize, p: &Prim) {
-        self.part_with(s, k, p, FILL);
-    }
-
-    /// [`Layout::part`] in the colour `fill`.
-    fn part_with(&self, s: &mut String, k: usize, p: &Prim, fill: &str) {
-        const WIDTH: f64 = 1.2;
-        match p {
-            Prim::Polygon(pts) => {
-                let _ = writeln!(
-                    s,
-                    r#"<polygon points="{}" fill="{fill}" stroke="{OUTLINE}" stroke-width="{WIDTH}" stroke-linejoin="round"/>"#,
-                    self.points(k, pts)
-                );
-            }
-            Prim::Capsule(a, b, r) => {
-                // An outlined thick line: a dark line a little wider under the fill-coloured one.
-                let ([ax, ay], [bx, by]) = (self.px(k, a), self.px(k, b));
-                let w = 2.0 * r * self.scale;
-                for (colour, w) in [(OUTLINE, w + 2.0 * WIDTH), (fill, w)] {
-                    let _ = writeln!(
-                        s,
-                        r#"<line x1="{ax:.2}" y1="{ay:.2}" x2="{bx:.2}" y2="{by:.2}" stroke="{colour}" stroke-width="{w:.2}" stroke-linecap="round"/>"#
-                    );
-                }
-            }
-            Prim::Circle(c, r) => {
-                let [x, y] = self.px(k, c);
-                let _ = writeln!(
-                    s,
-                    r#"<circle cx="{x:.2}" cy="{y:.2}" r="{:.2}" fill="{fill}" stroke="{OUTLINE}" stroke-width="{WIDTH}"/>"#,
-                    r * self.scale
-                );
-            }
-            Prim::Stick(a, b) => {
-                let ([ax, ay], [bx, by]) = (self.px(k, a), self.px(k, b));
-                let _ = writeln!(
-                    s,
-                    r#"<line class="stick" x1="{ax:.2}" y1="{ay:.2}" x2="{bx:.2}" y2="{by:.2}" stroke="{STICK}" stroke-width="2.5" stroke-linecap="round"/>"#
-                );
-            }
-        }
-    }
-
-    /// The support region: a translucent rectangle from above, a thick bar on the ground from the side.
-    fn support(&self, s: &mut String, k: usize, p: &Prim) {
-        match p {
-            Prim::Stick(a, b) => {
-                let ([ax, ay], [bx, by]) = (self.px(k, a), self.px(k, b));
-                let _ = writeln!(
-                    s,
-                    r#"<line class="support" x1="{ax:.2}" y1="{ay:.2}" x2="{bx:.2}" y2="{by:.2}" stroke="{SUPPORT}" stroke-width="4" stroke-opacity="0.7"/>"#
-                );
-            }
-            Prim::Polygon(pts) => {
-                let _ = writeln!(
-                    s,
-                    r#"<polygon class="support" points="{}" fill="{SUPPORT}" fill-opacity="0.15" stroke="{SUPPORT}" stroke-width="1.5"/>"#,
-                    self.points(k, pts)
-                );
-            }
-            Prim::Capsule(..) | Prim::Circle(..) => {}
-        }
-    }
-
-    fn points(&self, k: usize, pts: &[[f64; 2]]) -> String {
-        pts.iter().map(|p| self.px(k, p)).map(|[x, y]| format!("{x:.2},{y:.2}")).collect::<Vec<_>>().join(" ")
-    }
-
-    /// A force arrow from the contact point, `per_newton` pixels long per newton.
-    fn arrow(&self, s: &mut String, k: usize, at: &[f64; 2], f: &[f64; 2], per_newton: f64) {
-        let [x, y] = self.px(k, at);
-        let (dx, dy) = (f[0] * per_newton, -f[1] * per_newton);
-        let len = dx.hypot(dy);
-        if len < 1.0 {
-            return;
-        }
-        let (ux, uy) = (dx / len, dy / len);
-        let head = len.min(8.0);
-        let (tx, ty) = (x + dx, y + dy);
-        let (lx, ly) = (tx - head * ux + 0.5 * head * uy, ty - head * uy - 0.5 * head * ux);
-        let (rx, ry) = (tx - head * ux - 0.5 * head * uy, ty - head * uy + 0.5 * head * ux);
-        let _ = writeln!(
-            s,
-            r#"<line class="force" x1="{x:.2}" y1="{y:.2}" x2="{tx:.2}" y2="{ty:.2}" stroke="{FORCE}" stroke-width="2"/>"#
-        );
-        let _ = writeln!(s, r#"<polygon points="{tx:.2},{ty:.2} {lx:.2},{ly:.2} {rx:.2},{ry:.2}" fill="{FORCE}"/>"#);
-    }
 }
 
 /// The figure's weight (N) under the plan's gravity; for a massless figure or zero gravity, the largest
@@ -476,10 +320,6 @@ fn weight(model: &Model, record: &PlanRecord) -> f64 {
     }
     let biggest = |s: &super::record::SampleRecord| s.contact_forces.iter().map(|f| Vec3::from(*f).norm()).sum::<f64>();
     record.samples.iter().map(biggest).fold(1.0, f64::max)
-}
-
-fn xml_escape(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
 }
 
 /// The filmstrip as PNG (rendered at twice the SVG's pixel size, so it stays sharp on high-density screens

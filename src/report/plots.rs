@@ -7,8 +7,10 @@
 use super::record::{PlanRecord, SampleRecord};
 use crate::error::{Error, Result};
 use crate::model::{JointKind, Model};
-use plotters::element::DashedPathElement;
 use plotters::prelude::*;
+
+pub(crate) mod legend;
+pub(crate) use legend::Entry;
 
 /// Width of one panel and height of one row of panels (SVG pixels).
 const PANEL_WIDTH: u32 = 520;
@@ -60,14 +62,28 @@ impl Quantity {
     fn unit(self, kind: JointKind) -> (&'static str, f64) {
         let degrees = 180.0 / std::f64::consts::PI;
         match (self, kind == JointKind::Prismatic) {
-            (Quantity::Position, false) => ("deg", degrees),
-            (Quantity::Velocity, false) => ("deg/s", degrees),
-            (Quantity::Acceleration, false) => ("deg/s²", degrees),
+            (Quantity::Position, false) => ("°", degrees),
+            (Quantity::Velocity, false) => ("°/s", degrees),
+            (Quantity::Acceleration, false) => ("°/s²", degrees),
             (Quantity::Torque, false) => ("N·m", 1.0),
             (Quantity::Position, true) => ("m", 1.0),
             (Quantity::Velocity, true) => ("m/s", 1.0),
             (Quantity::Acceleration, true) => ("m/s²", 1.0),
             (Quantity::Torque, true) => ("N", 1.0),
+        }
+    }
+
+    /// What the y axis measures, for a joint of `kind`.
+    fn axis(self, kind: JointKind) -> &'static str {
+        match (self, kind == JointKind::Prismatic) {
+            (Quantity::Position, false) => "angle",
+            (Quantity::Velocity, false) => "angular velocity",
+            (Quantity::Acceleration, false) => "angular acceleration",
+            (Quantity::Torque, false) => "torque",
+            (Quantity::Position, true) => "position",
+            (Quantity::Velocity, true) => "velocity",
+            (Quantity::Acceleration, true) => "acceleration",
+            (Quantity::Torque, true) => "force",
         }
     }
 
@@ -178,8 +194,9 @@ pub(crate) fn grid(panels: usize) -> (usize, usize) {
     (panels.div_ceil(columns).max(1), columns)
 }
 
-pub(crate) fn canvas_size((rows, columns): (usize, usize)) -> (u32, u32) {
-    (PANEL_WIDTH * columns as u32, PANEL_HEIGHT * rows as u32 + TITLE_HEIGHT)
+/// The canvas of `rows × columns` panels under the title and a legend strip `legend` px high.
+pub(crate) fn canvas_size((rows, columns): (usize, usize), legend: u32) -> (u32, u32) {
+    (PANEL_WIDTH * columns as u32, PANEL_HEIGHT * rows as u32 + TITLE_HEIGHT + legend)
 }
 
 /// `[lo, hi]` of `values` widened by 5 % (and to ±1 around a constant), for a y axis.
@@ -203,7 +220,7 @@ pub(crate) fn time_range(record: &PlanRecord) -> (f64, f64) {
     }
 }
 
-/// One quantity for every joint, a panel each.
+/// One quantity for every joint, a panel each, under one legend.
 fn joint_plot(
     model: &Model,
     record: &PlanRecord,
@@ -211,75 +228,105 @@ fn joint_plot(
     quantity: Quantity,
     label: &str,
 ) -> Result<String> {
-    let layout = grid(model.nv());
+    let panels: Vec<JointPanel> = (0..model.nv()).map(|i| JointPanel::new(model, record, guess, quantity, i)).collect();
+    let title = format!("{} — {}", quantity.title(), record.model_name);
+    panels_svg(&title, panels.len(), &joint_legend(&panels, label), |k, area| panels[k].draw(area, time_range(record)))
+}
+
+/// A canvas of `count` panels (see [`grid`]) under `title` and the legend strip of `entries`, as SVG text;
+/// `draw(k, area)` draws panel `k`.
+pub(crate) fn panels_svg(
+    title: &str,
+    count: usize,
+    entries: &[Entry],
+    mut draw: impl FnMut(usize, &DrawingArea<SVGBackend, plotters::coord::Shift>) -> Result<()>,
+) -> Result<String> {
+    let layout = grid(count);
+    let legend_h = legend::height(entries, canvas_size(layout, 0).0);
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, canvas_size(layout)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, canvas_size(layout, legend_h)).into_drawing_area();
         root.fill(&WHITE).map_err(drawing_error)?;
-        let title = format!("{} — {}", quantity.title(), record.model_name);
-        let body = root.titled(&title, ("sans-serif", 22)).map_err(drawing_error)?;
-        let panels = body.split_evenly(layout);
-        for (i, panel) in panels.iter().enumerate().take(model.nv()) {
-            joint_panel(panel, model, record, guess, quantity, i, label)?;
+        let body = root.titled(title, ("sans-serif", 22)).map_err(drawing_error)?;
+        let (strip, body) = body.split_vertically(legend_h);
+        legend::draw(&strip, entries)?;
+        for (k, area) in body.split_evenly(layout).iter().enumerate().take(count) {
+            draw(k, area)?;
         }
         root.present().map_err(drawing_error)?;
     }
     Ok(svg)
 }
 
-fn joint_panel<DB: DrawingBackend>(
-    panel: &DrawingArea<DB, plotters::coord::Shift>,
-    model: &Model,
-    record: &PlanRecord,
-    guess: Option<&[SampleRecord]>,
-    quantity: Quantity,
-    i: usize,
-    label: &str,
-) -> Result<()> {
-    let joint = &model.joints[i + 1];
-    let (unit, factor) = quantity.unit(joint.kind);
-    let series =
-        |samples: &[SampleRecord]| -> Vec<(f64, f64)> { samples.iter().map(|s| (s.t, quantity.value(s, i) * factor)).collect() };
-    let planned = series(&record.samples);
-    let guessed = guess.map(series).unwrap_or_default();
-    // The band [−τ⁻, τ⁺] (the limits of the two directions), drawn when both are finite and on scale.
-    let (up, down) = (joint.limits.effort_toward(true), joint.limits.effort_toward(false));
-    let limit = (quantity == Quantity::Torque).then_some(up.max(down)).filter(|e| e.is_finite() && *e > 0.0);
-    // The plan sets the scale: an initial guess far off it (a kinematic guess can need ten times the torque)
-    // would flatten the plan into a line. Where the guess leaves the scale it is cut, and the caption says so.
-    let peak = planned.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
-    let limit_on_scale = limit.filter(|&l| l <= LIMIT_ON_SCALE * peak.max(1e-9));
-    let mut caption = format!("{} ({unit})", joint.name);
-    if let (Some(l), None) = (limit, limit_on_scale) {
-        caption.push_str(&format!(" — strength ±{l:.0} {unit}, off scale"));
+/// The legend of the joint plots: the plan (`label`), the guess where one is drawn, the strength band where one is.
+fn joint_legend(panels: &[JointPanel], label: &str) -> Vec<Entry> {
+    let mut entries = vec![Entry::line(label, PLANNED, 2)];
+    if panels.iter().any(|p| !p.guessed.is_empty()) {
+        let label = match panels.iter().any(|p| p.guess_cut) {
+            true => "initial guess (cut where it leaves the plan's scale)",
+            false => "initial guess",
+        };
+        entries.push(Entry { dashed: true, ..Entry::line(label, GUESS, 2) });
     }
-    let band = limit_on_scale.filter(|_| up.is_finite() && down.is_finite()).map(|_| (-down, up));
-    let band_edges = band.map_or(vec![], |(lo, hi)| vec![lo, hi]);
-    let y = padded_range(planned.iter().map(|p| p.1).chain(band_edges));
-    let (y, guess_cut) = guess_scale(y, &guessed);
-    if guess_cut {
-        caption.push_str(" — initial guess off scale");
+    if panels.iter().any(|p| p.band.is_some()) {
+        entries.push(Entry { opacity: 0.8, ..Entry::line("strength limit (shaded: allowed)", LIMIT, 1) });
     }
-    let x = time_range(record);
-    let mut chart = time_chart(panel, &caption, x, y, unit)?;
-    if let Some(edges) = band {
-        draw_strength_band(&mut chart, x, edges, i == 0)?;
-    }
-    let line = chart.draw_series(LineSeries::new(planned, PLANNED.stroke_width(2))).map_err(drawing_error)?;
-    line.label(label).legend(|(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], PLANNED.stroke_width(2)));
-    for (k, run) in inside_runs(&guessed, y).into_iter().enumerate() {
-        let dashed = chart.draw_series(DashedLineSeries::new(run, 6, 4, GUESS.stroke_width(2))).map_err(drawing_error)?;
-        if k > 0 {
-            continue;
+    entries
+}
+
+/// One joint's panel, worked out before drawing: its caption, curves, y range and strength band.
+struct JointPanel {
+    caption: String,
+    axis: String,
+    planned: Vec<(f64, f64)>,
+    guessed: Vec<(f64, f64)>,
+    y: (f64, f64),
+    guess_cut: bool,
+    band: Option<(f64, f64)>,
+}
+
+impl JointPanel {
+    fn new(model: &Model, record: &PlanRecord, guess: Option<&[SampleRecord]>, quantity: Quantity, i: usize) -> JointPanel {
+        let joint = &model.joints[i + 1];
+        let (unit, factor) = quantity.unit(joint.kind);
+        let series = |samples: &[SampleRecord]| -> Vec<(f64, f64)> {
+            samples.iter().map(|s| (s.t, quantity.value(s, i) * factor)).collect()
+        };
+        let planned = series(&record.samples);
+        let guessed = guess.map(series).unwrap_or_default();
+        // The band [−τ⁻, τ⁺] (the limits of the two directions), drawn when both are finite and on scale.
+        let (up, down) = (joint.limits.effort_toward(true), joint.limits.effort_toward(false));
+        let limit = (quantity == Quantity::Torque).then_some(up.max(down)).filter(|e| e.is_finite() && *e > 0.0);
+        // The plan sets the scale: an initial guess far off it (a kinematic guess can need ten times the
+        // torque) would flatten the plan into a line. Where the guess leaves the scale it is cut.
+        let peak = planned.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
+        let limit_on_scale = limit.filter(|&l| l <= LIMIT_ON_SCALE * peak.max(1e-9));
+        let mut caption = format!("{} ({unit})", joint.name);
+        if let (Some(l), None) = (limit, limit_on_scale) {
+            caption.push_str(&format!(" — strength ±{l:.0} {unit}, off scale"));
         }
-        dashed
-            .label("initial guess")
-            .legend(|(x, y)| DashedPathElement::new(vec![(x, y), (x + 22, y)], 5, 3, GUESS.stroke_width(2)));
+        let band = limit_on_scale.filter(|_| up.is_finite() && down.is_finite()).map(|_| (-down, up));
+        let band_edges = band.map_or(vec![], |(lo, hi)| vec![lo, hi]);
+        let y = padded_range(planned.iter().map(|p| p.1).chain(band_edges));
+        let (y, guess_cut) = guess_scale(y, &guessed);
+        if guess_cut {
+            caption.push_str(" — guess cut at the plan's scale");
+        }
+        let axis = format!("{} ({unit})", quantity.axis(joint.kind));
+        JointPanel { caption, axis, planned, guessed, y, guess_cut, band }
     }
-    if i == 0 {
-        draw_legend(&mut chart, SeriesLabelPosition::UpperRight, 12)?;
+
+    fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, plotters::coord::Shift>, x: (f64, f64)) -> Result<()> {
+        let mut chart = time_chart(area, &self.caption, x, self.y, &self.axis)?;
+        if let Some(edges) = self.band {
+            draw_strength_band(&mut chart, x, edges)?;
+        }
+        chart.draw_series(LineSeries::new(self.planned.clone(), PLANNED.stroke_width(2))).map_err(drawing_error)?;
+        for run in clipped_runs(&self.guessed, self.y) {
+            chart.draw_series(DashedLineSeries::new(run, 6, 4, GUESS.stroke_width(2))).map_err(drawing_error)?;
+        }
+        Ok(())
     }
-    Ok(())
 }
 
 /// The chart's legend at `position`, in the plots' one style (a pale box, a thin border, `size` px text).
@@ -309,20 +356,36 @@ fn guess_scale(plan: (f64, f64), guess: &[(f64, f64)]) -> ((f64, f64), bool) {
     }
 }
 
-/// The runs of consecutive points inside `[lo, hi]` (a line cut where it leaves the scale).
-fn inside_runs(points: &[(f64, f64)], (lo, hi): (f64, f64)) -> Vec<Vec<(f64, f64)>> {
+/// The line through `points` clipped to `lo ≤ y ≤ hi`: its runs inside, each segment cut where it crosses
+/// an edge (so a steep guess still shows where it passes through the scale).
+fn clipped_runs(points: &[(f64, f64)], (lo, hi): (f64, f64)) -> Vec<Vec<(f64, f64)>> {
     let mut runs: Vec<Vec<(f64, f64)>> = vec![];
     let mut open = false;
-    for &p in points {
-        let inside = p.1 >= lo && p.1 <= hi;
-        match (inside, open) {
-            (true, true) => runs.last_mut().expect("an open run").push(p),
-            (true, false) => runs.push(vec![p]),
-            _ => {}
+    for w in points.windows(2) {
+        let Some((s0, s1)) = clip_segment(w[0], w[1], lo, hi) else {
+            open = false;
+            continue;
+        };
+        let at = |s: f64| (w[0].0 + s * (w[1].0 - w[0].0), w[0].1 + s * (w[1].1 - w[0].1));
+        if !open || s0 > 0.0 {
+            runs.push(vec![at(s0)]);
         }
-        open = inside;
+        runs.last_mut().expect("a run was opened").push(at(s1));
+        open = s1 >= 1.0;
     }
     runs
+}
+
+/// The part `[s0, s1]` of the segment `a + s (b − a)`, `s ∈ [0, 1]`, where `lo ≤ y ≤ hi`; `None` outside.
+fn clip_segment(a: (f64, f64), b: (f64, f64), lo: f64, hi: f64) -> Option<(f64, f64)> {
+    let dy = b.1 - a.1;
+    if dy == 0.0 {
+        return (a.1 >= lo && a.1 <= hi).then_some((0.0, 1.0));
+    }
+    // y(s) = lo and y(s) = hi at s = (lo − a_y)/Δy and (hi − a_y)/Δy.
+    let (s_lo, s_hi) = ((lo - a.1) / dy, (hi - a.1) / dy);
+    let (s0, s1) = (s_lo.min(s_hi).max(0.0), s_lo.max(s_hi).min(1.0));
+    (s0 <= s1).then_some((s0, s1))
 }
 
 /// The band `−τ⁻ ≤ τ ≤ τ⁺` shaded, and its edges.
@@ -330,46 +393,30 @@ fn draw_strength_band<DB: DrawingBackend>(
     chart: &mut ChartContext<DB, Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>>,
     (t0, t1): (f64, f64),
     (low, high): (f64, f64),
-    with_legend: bool,
 ) -> Result<()> {
     chart
         .draw_series(std::iter::once(Rectangle::new([(t0, low), (t1, high)], ALLOWED_BAND.mix(0.12).filled())))
         .map_err(drawing_error)?;
     for edge in [high, low] {
-        let drawn = chart
-            .draw_series(LineSeries::new([(t0, edge), (t1, edge)], LIMIT.mix(0.8).stroke_width(1)))
-            .map_err(drawing_error)?;
-        if with_legend && edge > 0.0 {
-            drawn.label("strength limit").legend(|(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], LIMIT.stroke_width(1)));
-        }
+        chart.draw_series(LineSeries::new([(t0, edge), (t1, edge)], LIMIT.mix(0.8).stroke_width(1))).map_err(drawing_error)?;
     }
     Ok(())
 }
 
 /// The force of every contact on the figure, a panel each: x, y, z (world axes, N).
 fn contact_plot(record: &PlanRecord) -> Result<String> {
-    let layout = grid(record.contacts.len());
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, canvas_size(layout)).into_drawing_area();
-        root.fill(&WHITE).map_err(drawing_error)?;
-        let title = format!("Contact forces on the figure — {}", record.model_name);
-        let body = root.titled(&title, ("sans-serif", 22)).map_err(drawing_error)?;
-        for (c, panel) in body.split_evenly(layout).iter().enumerate().take(record.contacts.len()) {
-            let x = time_range(record);
-            let y = padded_range(record.samples.iter().flat_map(|s| s.contact_forces[c]));
-            let caption = format!("{} (N, world axes)", record.contacts[c].name);
-            let mut chart = time_chart(panel, &caption, x, y, "N")?;
-            for (axis, (name, colour)) in ["x", "y", "z"].iter().zip(FORCE_COLOURS).enumerate() {
-                let points: Vec<(f64, f64)> = record.samples.iter().map(|s| (s.t, s.contact_forces[c][axis])).collect();
-                let drawn = chart.draw_series(LineSeries::new(points, colour.stroke_width(2))).map_err(drawing_error)?;
-                drawn
-                    .label(format!("f{name}"))
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], colour.stroke_width(2)));
-            }
-            draw_legend(&mut chart, SeriesLabelPosition::UpperRight, 12)?;
+    let axes = ["x", "y", "z"];
+    let entries: Vec<Entry> = axes.iter().zip(FORCE_COLOURS).map(|(a, c)| Entry::line(format!("f{a}"), c, 2)).collect();
+    let title = format!("Contact forces on the figure — {}", record.model_name);
+    panels_svg(&title, record.contacts.len(), &entries, |c, area| {
+        let x = time_range(record);
+        let y = padded_range(record.samples.iter().flat_map(|s| s.contact_forces[c]));
+        let caption = format!("{} (N, world axes)", record.contacts[c].name);
+        let mut chart = time_chart(area, &caption, x, y, "force (N)")?;
+        for (axis, colour) in FORCE_COLOURS.iter().enumerate() {
+            let points: Vec<(f64, f64)> = record.samples.iter().map(|s| (s.t, s.contact_forces[c][axis])).collect();
+            chart.draw_series(LineSeries::new(points, colour.stroke_width(2))).map_err(drawing_error)?;
         }
-        root.present().map_err(drawing_error)?;
-    }
-    Ok(svg)
+        Ok(())
+    })
 }

@@ -96,6 +96,7 @@ pub fn scene_json(model: &Model, record: &PlanRecord, summary: Value) -> Value {
         "converged": record.converged,
         "gravity": record.gravity,
         "joint_names": record.joint_names,
+        "joint_units": model.joints[1..].iter().map(|j| if j.kind == crate::model::JointKind::Prismatic { "N" } else { "N·m" }).collect::<Vec<_>>(),
         "efforts": model.joints[1..].iter().map(|j| j.limits.effort.is_finite().then_some(j.limits.effort)).collect::<Vec<_>>(),
         "peak_torque": scene::peak_torque(record),
         "weight": weight,

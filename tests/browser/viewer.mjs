@@ -145,6 +145,33 @@ try {
       const capsules = await page.evaluate(() => window.mintorque.collisionShapes());
       check(`${name}: collision capsules drawn`, capsules > 0, `${capsules} capsules`);
     }
+    // The chart: one unit per axis, time in seconds, a legend entry per series inside its box (it scrolls).
+    const chart = await page.evaluate(() => window.mintorque.chart());
+    check(`${name}: chart axes carry one unit each`, chart.xLabel === 'time (s)' && /\((N·m|N|%)\)$/.test(chart.yLabel)
+      && !chart.yLabel.includes(' or ') && chart.modes.every((m) => ['N·m', 'N', '%'].includes(m)), JSON.stringify(chart.modes) + ' ' + chart.yLabel);
+    check(`${name}: chart legend fits`, chart.legendEntries === chart.series.length && chart.legendInside, `${chart.legendEntries} entries`);
+    if (name.includes('mixed')) {
+      const force = await page.evaluate(() => { window.mintorque.setChart('N'); return window.mintorque.chart(); });
+      check(`${name}: torque and force on separate axes`, chart.modes.includes('N·m') && force.mode === 'N'
+        && force.yLabel === 'force (N)' && force.series.length === 1 && chart.series.length === 1, JSON.stringify([chart.series, force.series]));
+      await page.evaluate(() => window.mintorque.setChart('N·m'));
+    }
+    const joints = await page.evaluate(() => window.mintorque.pose().length);
+    if (name.includes('moon')) {
+      check(`${name}: a legend entry for each of the many joints`, chart.series.length >= 30, `${chart.series.length} series, ${joints} bodies`);
+    }
+    const strength = await page.evaluate(() => Boolean(window.mintorque.chart().modes.includes('%')));
+    if (name.includes('weight_lift') || name.includes('moon')) {
+      check(`${name}: strength share chart offered`, strength);
+      await page.evaluate(() => window.mintorque.setChart('%'));
+      const share = await page.evaluate(() => window.mintorque.chart());
+      check(`${name}: strength share and population capable shown`, share.mode === '%' && share.series.some((n) => n.endsWith('capable'))
+        && share.series.some((n) => n.endsWith('|τ|/strength')) && share.legendInside, `${share.series.length} series`);
+      fs.mkdirSync(artifacts, { recursive: true });
+      await page.locator('#plot-box').screenshot({ path: path.join(artifacts, `chart-strength-${n}.png`) });
+      await page.evaluate(() => window.mintorque.setChart('N·m'));
+    }
+    await page.locator('#plot-box').screenshot({ path: path.join(artifacts, `chart-${n}.png`) });
     check(`${name}: no console errors`, errors.length === 0, errors.join(' | '));
     check(`${name}: nothing fetched from the network`, external.length === 0, external.join(' '));
     await page.close();

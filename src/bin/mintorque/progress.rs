@@ -1,4 +1,4 @@
-//! The progress of one plan on the terminal.
+//! The progress of one plan on the terminal: the solver's iterations, then the outputs being written.
 
 use std::io::IsTerminal;
 
@@ -25,4 +25,25 @@ pub fn spinner(quiet: bool) -> (Option<indicatif::ProgressBar>, impl FnMut(&mint
         }
     };
     (bar, observer)
+}
+
+/// A reporter of the outputs' stages on stderr, "writing outputs k/n: stage …": one line overwritten in
+/// place on a terminal (cleared when done), a line per stage otherwise, nothing with `quiet`.
+pub fn writing(quiet: bool) -> (Option<indicatif::ProgressBar>, impl FnMut(usize, usize, &str)) {
+    let bar = (!quiet && std::io::stderr().is_terminal()).then(|| {
+        let b = indicatif::ProgressBar::new(1);
+        b.set_style(indicatif::ProgressStyle::with_template("writing outputs {pos}/{len}: {msg} …").expect("valid template"));
+        b
+    });
+    let shown = bar.clone();
+    let report = move |k: usize, n: usize, stage: &str| match &shown {
+        Some(b) => {
+            b.set_length(n as u64);
+            b.set_position(k as u64);
+            b.set_message(stage.to_string());
+        }
+        None if !quiet => eprintln!("writing outputs {k}/{n}: {stage} …"),
+        None => {}
+    };
+    (bar, report)
 }

@@ -6,7 +6,7 @@ use super::loads::LoadSeries;
 use super::Ergonomics;
 use crate::error::Result;
 use crate::model::Model;
-use crate::report::plots::{canvas_size, draw_legend, drawing_error, grid, padded_range, time_chart, time_range, PNG_SCALE};
+use crate::report::plots::{drawing_error, legend, padded_range, panels_svg, time_chart, time_range, Entry, PNG_SCALE};
 use crate::report::record::PlanRecord;
 use plotters::prelude::*;
 
@@ -16,7 +16,8 @@ const LIMIT: RGBColor = RGBColor(150, 40, 40);
 /// One panel: curves against time and horizontal reference levels.
 struct Panel {
     caption: String,
-    unit: &'static str,
+    /// The y axis's quantity and unit.
+    axis: &'static str,
     curves: Vec<(String, Vec<(f64, f64)>)>,
     levels: Vec<(String, f64)>,
 }
@@ -27,8 +28,8 @@ pub fn plots(model: &Model, record: &PlanRecord, series: Option<&LoadSeries>, e:
     let mut svgs: Vec<(&str, String)> = Vec::new();
     if let Some(series) = series.filter(|_| model.nv() > 0 && !record.samples.is_empty()) {
         for (stem, title, unit, moment) in [
-            ("joint_forces", "Joint force on the child body", "N", false),
-            ("joint_moments", "Joint moment on the child body", "N·m", true),
+            ("joint_forces", "Joint force on the child body", "force (N)", false),
+            ("joint_moments", "Joint moment on the child body", "moment (N·m)", true),
         ] {
             let panels = load_panels(model, record, series, unit, moment);
             svgs.push((stem, lines_svg(&format!("{title} (child-body axes) — {}", record.model_name), record, &panels)?));
@@ -39,7 +40,7 @@ pub fn plots(model: &Model, record: &PlanRecord, series: Option<&LoadSeries>, e:
         let panels = [
             Panel {
                 caption: format!("L5/S1 compression at {} (N)", b.joint),
-                unit: "N",
+                axis: "force (N)",
                 curves: vec![("compression".into(), curve(|s| s.compression_n))],
                 levels: vec![
                     ("NIOSH action limit".into(), b.action_limit_n),
@@ -48,7 +49,7 @@ pub fn plots(model: &Model, record: &PlanRecord, series: Option<&LoadSeries>, e:
             },
             Panel {
                 caption: format!("L5/S1 shear at {} (N, + forward)", b.joint),
-                unit: "N",
+                axis: "force (N)",
                 curves: vec![("shear".into(), curve(|s| s.shear_n))],
                 levels: vec![],
             },
@@ -62,7 +63,7 @@ pub fn plots(model: &Model, record: &PlanRecord, series: Option<&LoadSeries>, e:
             .zip(&s.shares)
             .map(|(j, share)| Panel {
                 caption: format!("{} — {} (% of strength)", j.name, j.source),
-                unit: "%",
+                axis: "share of strength (%)",
                 curves: vec![(
                     "|τ| / strength".into(),
                     record.samples.iter().zip(share).map(|(r, x)| (r.t, 100.0 * x)).collect(),
@@ -98,8 +99,8 @@ fn load_panels(model: &Model, record: &PlanRecord, series: &LoadSeries, unit: &'
             };
             let prefix = if moment { "M" } else { "F" };
             Panel {
-                caption: format!("{} ({unit})", model.joints[i + 1].name),
-                unit,
+                caption: format!("{} ({})", model.joints[i + 1].name, if moment { "N·m" } else { "N" }),
+                axis: unit,
                 curves: ["x", "y", "z"].iter().enumerate().map(|(k, a)| (format!("{prefix}{a}"), component(k))).collect(),
                 levels: vec![],
             }
@@ -107,32 +108,29 @@ fn load_panels(model: &Model, record: &PlanRecord, series: &LoadSeries, unit: &'
         .collect()
 }
 
-/// The panels on one canvas, titled.
+/// The panels on one canvas, titled, under one legend of every curve and level they draw.
 fn lines_svg(title: &str, record: &PlanRecord, panels: &[Panel]) -> Result<String> {
-    let layout = grid(panels.len());
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, canvas_size(layout)).into_drawing_area();
-        root.fill(&WHITE).map_err(drawing_error)?;
-        let body = root.titled(title, ("sans-serif", 22)).map_err(drawing_error)?;
-        for (panel, area) in panels.iter().zip(body.split_evenly(layout).iter()) {
-            let x = time_range(record);
-            let values = panel.curves.iter().flat_map(|(_, c)| c.iter().map(|p| p.1)).chain(panel.levels.iter().map(|l| l.1));
-            let y = padded_range(values);
-            let mut chart = time_chart(area, &panel.caption, x, y, panel.unit)?;
-            for ((label, points), colour) in panel.curves.iter().zip(COLOURS.iter().cycle()) {
-                let colour = *colour;
-                let drawn = chart.draw_series(LineSeries::new(points.clone(), colour.stroke_width(2))).map_err(drawing_error)?;
-                drawn.label(label).legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], colour.stroke_width(2)));
-            }
-            for (k, (label, level)) in panel.levels.iter().enumerate() {
-                let style = LIMIT.mix(if k == 0 { 0.6 } else { 1.0 }).stroke_width(1 + k as u32);
-                let drawn = chart.draw_series(LineSeries::new([(x.0, *level), (x.1, *level)], style)).map_err(drawing_error)?;
-                drawn.label(label).legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], style));
-            }
-            draw_legend(&mut chart, SeriesLabelPosition::UpperRight, 12)?;
+    let entries = legend::unique(panels.iter().flat_map(|p| {
+        let curves = p.curves.iter().zip(COLOURS.iter().cycle()).map(|((label, _), c)| Entry::line(label, *c, 2));
+        curves.chain(p.levels.iter().enumerate().map(|(k, (label, _))| level_entry(label, k))).collect::<Vec<_>>()
+    }));
+    panels_svg(title, panels.len(), &entries, |k, area| {
+        let panel = &panels[k];
+        let x = time_range(record);
+        let values = panel.curves.iter().flat_map(|(_, c)| c.iter().map(|p| p.1)).chain(panel.levels.iter().map(|l| l.1));
+        let mut chart = time_chart(area, &panel.caption, x, padded_range(values), panel.axis)?;
+        for ((_, points), colour) in panel.curves.iter().zip(COLOURS.iter().cycle()) {
+            chart.draw_series(LineSeries::new(points.clone(), colour.stroke_width(2))).map_err(drawing_error)?;
         }
-        root.present().map_err(drawing_error)?;
-    }
-    Ok(svg)
+        for (k, (label, level)) in panel.levels.iter().enumerate() {
+            let style = level_entry(label, k).style();
+            chart.draw_series(LineSeries::new([(x.0, *level), (x.1, *level)], style)).map_err(drawing_error)?;
+        }
+        Ok(())
+    })
+}
+
+/// The `k`-th reference level's line: the first pale and thin, later ones darker and thicker.
+fn level_entry(label: &str, k: usize) -> Entry {
+    Entry { opacity: if k == 0 { 0.6 } else { 1.0 }, ..Entry::line(label, LIMIT, 1 + k as u32) }
 }

@@ -299,15 +299,31 @@ pub struct StrengthReport {
     /// `|τ| / strength` per joint (as `joints`) and sample, for the plot (not in summary.json).
     #[serde(skip)]
     pub shares: Vec<Vec<f64>>,
+    /// Per joint (as `joints`), the samples where it has a strength: time (s), |τ| as a % of the mean
+    /// strength and the % of the population capable — for the viewer's chart.
+    pub over_time: Vec<StrengthSeries>,
+}
+
+/// One joint's strength share over time (see [`StrengthReport::over_time`]).
+#[derive(Serialize, Debug, Clone, PartialEq, Default)]
+pub struct StrengthSeries {
+    /// Sample times (s).
+    pub t: Vec<f64>,
+    /// `100 |τ| / T` (%).
+    pub share_percent: Vec<f64>,
+    /// `100 (1 − Φ((|τ| − T)/σ))` (%).
+    pub capable_percent: Vec<f64>,
 }
 
 /// The strength assessment of `record` with one source per joint.
 pub fn assess(model: &Model, record: &PlanRecord, sources: &[Source], cv: f64) -> StrengthReport {
     let mut joints = Vec::new();
     let mut shares = Vec::new();
+    let mut over_time = Vec::new();
     for (i, source) in sources.iter().enumerate().filter(|(_, s)| **s != Source::None) {
         let mut share = Vec::with_capacity(record.samples.len());
         let (mut peak, mut least) = ((0.0, 0.0), (100.0, 0.0));
+        let mut series = StrengthSeries::default();
         for s in &record.samples {
             let Some((mean, sd)) = source.strength(s.q[i], s.qd[i], s.tau[i], cv) else { continue };
             let x = s.tau[i].abs() / mean;
@@ -320,7 +336,11 @@ pub fn assess(model: &Model, record: &PlanRecord, sources: &[Source], cv: f64) -
                 least = (capable, s.t);
             }
             share.push(x);
+            series.t.push(s.t);
+            series.share_percent.push(100.0 * x);
+            series.capable_percent.push(capable);
         }
+        over_time.push(series);
         let name = model.joints[i + 1].name.clone();
         joints.push(JointStrength {
             name,
@@ -340,5 +360,6 @@ pub fn assess(model: &Model, record: &PlanRecord, sources: &[Source], cv: f64) -
         limiting_time_s: limiting.map_or(0.0, |j| j.least_capable_time_s),
         joints,
         shares,
+        over_time,
     }
 }
