@@ -309,6 +309,21 @@ fn a_front_filmstrip_goes_beside_the_side_one_for_a_3d_plan_only() {
     }
 }
 
+/// A figure held by the world stands on a ground line; the same figure floating free has none.
+#[test]
+fn a_free_floating_figure_is_drawn_without_ground() {
+    const GROUND: &str = r##"stroke="#9aa5b1" stroke-width="1.5""##;
+    let held = Structure::WholeBody.build(HumanParams::default()).unwrap();
+    let free = mintorque::model::human::build_free(Structure::WholeBody, HumanParams::default()).unwrap();
+    for (model, ground) in [(held, true), (free, false)] {
+        let rec = record(&model, 1.0, 11, 0.3, &[]);
+        for view in [View::Side, View::Front] {
+            let svg = filmstrip_svg(&model, &rec, 4, view);
+            assert_eq!(svg.contains(GROUND), ground, "{} ({view:?})", model.name);
+        }
+    }
+}
+
 /// Writes a plan directory of a hand-made record through `plan_dir`, as `mintorque plan` would.
 fn write_plan_dir(dir: &Path, model: &Model, rec: &PlanRecord) {
     plan_dir::write(dir, &PlanContents::from_record(model.clone(), rec.clone()), &WriteOptions::default()).unwrap();

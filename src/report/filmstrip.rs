@@ -84,7 +84,7 @@ pub fn filmstrip_svg(model: &Model, record: &PlanRecord, frames: usize, view: Vi
     let poser = Poser::new(model, record, view);
     let mut data = Data::new(model);
     let poses: Vec<Pose> = times.iter().map(|&t| poser.pose_at(&mut data, t)).collect();
-    let scenery = scenery(record, view);
+    let scenery = scenery(model, record, view);
     Layout::new(&poses, &scenery, weight(model, record)).svg(
         model,
         record,
@@ -233,7 +233,8 @@ struct Scenery {
     planes: Vec<solids::EdgeOn>,
 }
 
-fn scenery(record: &PlanRecord, view: View) -> Scenery {
+/// A free-floating figure (`model::floating`) stands on nothing: it gets no ground line.
+fn scenery(model: &Model, record: &PlanRecord, view: View) -> Scenery {
     let support = record.support.map(|[[x0, x1], [y0, y1]]| match view {
         View::Top => Prim::Polygon(vec![[x0, y0], [x1, y0], [x1, y1], [x0, y1]]),
         View::Side => Prim::Stick([x0, 0.0], [x1, 0.0]),
@@ -241,7 +242,8 @@ fn scenery(record: &PlanRecord, view: View) -> Scenery {
     });
     let targets = record.contacts.iter().map(|c| view.project(&Vec3::from(c.target)).0).collect();
     let (obstacles, planes) = solids::scenery(record, view);
-    Scenery { ground: (view != View::Top).then_some(0.0), support, targets, obstacles, planes }
+    let ground = (view != View::Top && !model.is_free_floating()).then_some(0.0);
+    Scenery { ground, support, targets, obstacles, planes }
 }
 
 /// Where the panels go: one common scale, every pose's panel as large as the union of all of them, in one
