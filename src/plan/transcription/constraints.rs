@@ -219,7 +219,7 @@ impl Transcription<'_> {
             IneqRow::UpperPosition(_) | IneqRow::LowerPosition(_) => format!("{}° past the limit", num(raw.to_degrees())),
             IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) => {
                 let limit = self.torque_bound(i, matches!(row, IneqRow::UpperTorque(_)));
-                let unit = if prismatic(i) { "N" } else { "N·m" };
+                let unit = self.force_unit(i);
                 if limit == 0.0 {
                     format!("{} {unit} on an unactuated joint (must be 0)", num(raw))
                 } else {

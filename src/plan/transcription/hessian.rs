@@ -2,8 +2,8 @@
 //! solver's model `JᵀJ + Σ wⱼ∇²cⱼ` (see `solve::least_squares`).
 //!
 //! At a node the rows that curve are functions of the active torque `τ(z, λ)` and the root wrench
-//! `W(z, λ)`, `z = (q, q̇, q̈)`: the residuals `√wₖ √W_l τ_l`, the torque limits `±τᵢ − τ_max` and the
-//! balance rows `c·W`. With the rows' weights they add up to one scalar per node,
+//! `W(z, λ)`, `z = (q, q̇, q̈)`: the residuals `√wₖ √W_l τ_l`, the torque limits `±τᵢ − τ_max`, a free
+//! root's force rows `τᵢ = 0` (`root.rs`) and the balance rows `c·W`. With the rows' weights they add up to one scalar per node,
 //!
 //! ```text
 //!   φₖ(z, λ) = Σ_l ω_l τ_l(z, λ) + ω_W · W(z, λ),      ∇²_x(Σ wⱼcⱼ) = Σₖ Bₖᵀ ∇²φₖ Bₖ      (eq. 33)

@@ -190,7 +190,8 @@ impl<'s> Transcription<'s> {
                 }
             }
         }
-        // A free root's generalised forces are held at 0 (τ ≤ 0 and −τ ≤ 0) whether or not the limits are.
+        // A free root's generalised forces are held at 0 (τ ≤ 0 and −τ ≤ 0) whether or not the limits are —
+        // rows kept for the dense check (`on_grid`); on the quadrature nodes `new` replaces them by `root` rows.
         for i in 0..nv {
             if spec.torque_limits || model.is_unactuated(i) {
                 if effort[0][i].is_finite() {

@@ -9,9 +9,9 @@
 //! goal posture): one row per span determines the root's motion from the joints' — the discrete counterpart
 //! of the root following its momentum — where rows at all four Gauss nodes ask four times more of the root's
 //! spline than it has freedom for (such plans did not converge). Between the collocation nodes the root
-//! forces are not exactly zero; the dense check between the nodes measures them in N and N·m against the
-//! residual tolerance (`plan::Tolerances::residual_percent` of the figure's weight), as OpenSim's residual
-//! reduction judges the residual forces of a recorded motion.
+//! forces are not exactly zero; the dense check between the nodes measures them in N and N·m against
+//! `plan::Tolerances::root_force_n` (1 by default), as OpenSim's residual reduction judges the residual
+//! forces of a recorded motion.
 //!
 //! The rows come first among the equality rows (the loop closures' check nodes are appended after theirs,
 //! so that warm multipliers keep their indices).
