@@ -100,30 +100,35 @@ pub(super) fn run_start(
     let started = Instant::now();
     let mut problem = Transcription::new(spec)?;
     let first = Settings { time_limit: remaining(deadline), ..settings.clone() };
-    let mut outcome = match solver {
-        SolverKind::Structured => solve::AugLagLevenbergMarquardt.solve(&mut problem, x0, &first, observer),
-        SolverKind::Newton => solve::AugLagNewton.solve(&mut problem, x0, &first, observer),
-        SolverKind::AuglagBfgs => solve::AugLagBfgs::default().solve(&mut problem, x0, &first, observer),
+    let mut outcome = solve_once(solver, &mut problem, x0, &first, observer);
+    // Gauss–Newton ignores the curvature of the residuals (large at a minimum-torque optimum, and with
+    // contact forces λ·∂²Φ), so Levenberg–Marquardt can crawl or stall just short of the stationarity test.
+    // A polish from where it stopped, warm-started with its multipliers, supplies that curvature — with
+    // what is left of the same budget: Newton (the exact second-order term) after Gauss–Newton, then the
+    // paper's BFGS if that did not converge either.
+    let polishers: &[SolverKind] = match solver {
+        SolverKind::Structured => &[SolverKind::Newton, SolverKind::AuglagBfgs],
+        SolverKind::Newton => &[SolverKind::AuglagBfgs],
+        SolverKind::AuglagBfgs => &[],
     };
-    // Gauss–Newton ignores the curvature of the residuals (large with contact forces: λ·∂²Φ), so on loop
-    // closures Levenberg–Marquardt can stall just short of the stationarity test. A quasi-Newton polish
-    // from where it stopped, warm-started with its multipliers, supplies that curvature — with what is
-    // left of the same budget.
-    let left = settings.max_iterations.saturating_sub(outcome.iterations);
     let mut polished = false;
-    if solver != SolverKind::AuglagBfgs
-        && !outcome.converged
-        && matches!(outcome.reason, StopReason::Stalled | StopReason::MaxIterations)
-        && left > 0
-        && remaining(deadline).is_none_or(|t| t > 0.0)
-    {
+    for &polisher in polishers {
+        let left = settings.max_iterations.saturating_sub(outcome.iterations);
+        if outcome.converged
+            || !matches!(outcome.reason, StopReason::Stalled | StopReason::NoProgress { .. } | StopReason::MaxIterations)
+            || left == 0
+            || remaining(deadline).is_some_and(|t| t <= 0.0)
+        {
+            break;
+        }
         let polish_settings = Settings {
             warm_start: Some(outcome.multipliers.clone()),
+            initial_penalty: Some(outcome.penalty),
             max_iterations: left,
             time_limit: remaining(deadline),
             ..settings.clone()
         };
-        let polish = solve::AugLagBfgs::default().solve(&mut problem, &outcome.x, &polish_settings, observer);
+        let polish = solve_once(polisher, &mut problem, &outcome.x, &polish_settings, observer);
         if polish.converged || polish.worst_violation <= outcome.worst_violation && polish.objective <= outcome.objective {
             polished = true;
             outcome = Outcome {
@@ -135,6 +140,21 @@ pub(super) fn run_start(
         }
     }
     Ok(Run { outcome, polished, seconds: started.elapsed().as_secs_f64() })
+}
+
+/// One solve of `problem` from `x0` by `solver`.
+fn solve_once(
+    solver: SolverKind,
+    problem: &mut Transcription,
+    x0: &[f64],
+    settings: &Settings,
+    observer: &mut dyn FnMut(&Progress),
+) -> Outcome {
+    match solver {
+        SolverKind::Structured => solve::AugLagLevenbergMarquardt.solve(problem, x0, settings, observer),
+        SolverKind::Newton => solve::AugLagNewton.solve(problem, x0, settings, observer),
+        SolverKind::AuglagBfgs => solve::AugLagBfgs::default().solve(problem, x0, settings, observer),
+    }
 }
 
 /// Seconds left before `deadline` (`None`: no limit).

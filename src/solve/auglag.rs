@@ -71,6 +71,11 @@ pub(crate) trait InnerSolver {
     /// Accepted steps without progress after which an inner solve counts as stalled: at a tolerance below
     /// what the conditioning allows, steps still get accepted on rounding noise but lead nowhere.
     fn stall_window(&self) -> usize;
+
+    /// Accepted steps one inner minimisation may take before the multipliers are updated anyway.
+    fn inner_budget(&self, settings: &Settings) -> usize {
+        settings.max_inner_iterations
+    }
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -96,6 +101,44 @@ struct StallWatch {
     gradient_norm: f64,
     value: f64,
     since: usize,
+}
+
+/// Inner solves that used their whole budget, for the no-progress test: progress means halving the
+/// distance to the convergence test, `d = max(stationarity / tol_stationarity, violation / tol_violation)`.
+#[derive(Clone, Copy, Debug)]
+struct SlowWatch {
+    /// The smallest `d` after an outer iteration so far.
+    best: f64,
+    /// Successive budget-exhausted inner solves that did not halve `best`.
+    since: usize,
+}
+
+impl Default for SlowWatch {
+    fn default() -> Self {
+        SlowWatch { best: f64::INFINITY, since: 0 }
+    }
+}
+
+/// Budget-exhausted inner solves in a row without progress after which the solve stops.
+const SLOW_INNER_SOLVES: usize = 3;
+
+impl SlowWatch {
+    /// Updates the watch after an outer iteration; the stop reason once [`SLOW_INNER_SOLVES`] inner solves
+    /// in a row used their whole budget without progress.
+    fn after(&mut self, status: &InnerStatus, a: &Assessment, settings: &Settings) -> Option<StopReason> {
+        let d = (a.stationarity.max(a.complementarity) / settings.tol_stationarity).max(a.violation / settings.tol_violation);
+        let progress = d < 0.5 * self.best;
+        self.best = self.best.min(d);
+        self.since = match (status, progress) {
+            (InnerStatus::MaxIterations, false) => self.since + 1,
+            _ => 0,
+        };
+        (self.since >= SLOW_INNER_SOLVES).then(|| StopReason::NoProgress {
+            inner_solves: self.since,
+            stationarity: a.stationarity.max(a.complementarity),
+            violation: a.violation,
+        })
+    }
 }
 
 /// The state of the convergence test at a point, for given multipliers.
@@ -411,6 +454,7 @@ fn validate(dims: Dims, x0: &[f64], settings: &Settings) -> Result<(), String> {
             "violation_decrease must lie strictly between 0 and 1",
         ),
         (settings.initial_penalty.is_none_or(positive), "initial_penalty must be finite and positive"),
+        (settings.max_inner_iterations > 0, "max_inner_iterations must be positive"),
         (settings.time_limit.is_none_or(|t| t.is_finite() && t >= 0.0), "time_limit must be finite and non-negative"),
     ];
     if let Some((_, message)) = checks.iter().find(|(ok, _)| !ok) {
@@ -546,6 +590,7 @@ impl AugmentedLagrangian<'_> {
         let mut omega = FIRST_INNER_TOLERANCE.max(settings.tol_stationarity);
         let mut previous_progress = f64::INFINITY;
         let mut stuck = 0;
+        let mut slow = SlowWatch::default();
         let mut last: Option<Assessment> = None;
         loop {
             if self.deadline.is_some_and(|d| Instant::now() >= d) || self.cancel.raised() {
@@ -554,7 +599,8 @@ impl AugmentedLagrangian<'_> {
             if self.remaining_iterations() == 0 {
                 return self.finish(x, StopReason::MaxIterations, last, settings);
             }
-            let report = inner.minimise(self, &mut x, omega, self.remaining_iterations());
+            let budget = self.remaining_iterations().min(inner.inner_budget(settings));
+            let report = inner.minimise(self, &mut x, omega, budget);
             // A stall ends this inner solve only; time and iteration limits end the whole solve.
             let stalled = self.limit_hit == Some(Limit::Stall);
             if stalled {
@@ -578,6 +624,9 @@ impl AugmentedLagrangian<'_> {
             last = Some(assessment);
             if assessment.converged {
                 return self.finish(x, StopReason::Converged, last, settings);
+            }
+            if let Some(reason) = slow.after(&status, &assessment, settings) {
+                return self.finish(x, reason, last, settings);
             }
             match status {
                 InnerStatus::Stopped => {
@@ -697,6 +746,12 @@ impl InnerSolver for BfgsInner {
     /// BFGS may need a few times `n` steps to learn the curvature, with little visible progress meanwhile.
     fn stall_window(&self) -> usize {
         (2 * self.bfgs.dim()).max(100)
+    }
+
+    /// The paper's method unchanged: each inner solve runs to its tolerance (or a stall); a cap cut the
+    /// curvature BFGS was learning and left the pendulum test stalled at 7× its tolerance.
+    fn inner_budget(&self, _: &Settings) -> usize {
+        usize::MAX
     }
 }
 

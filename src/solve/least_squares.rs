@@ -48,6 +48,14 @@ const MAX_DAMPING: f64 = 1e20;
 /// Iterations between refreshes of the secant second-order term by differences (when the problem does
 /// not provide the term itself); measured best of 1, 4, 12 on the bundled examples (docs/performance.md).
 const SECANT_REFRESH: usize = 4;
+/// Inner steps after which the structured solver adds the exact second-order term to its Gauss–Newton
+/// model for the rest of the solve: most inner solves converge in fewer; one that has not is crawling
+/// (docs/performance.md).
+const ESCALATE_AFTER: usize = 100;
+/// Models between recomputations of the problem's exact second-order term (and at every multiplier
+/// update). Measured on the bundled examples with `newton`, one start: every 5 models instead of every one
+/// costs 15–60 % more iterations but 1.5–3.4× less time (docs/performance.md).
+const EXACT_REFRESH: usize = 5;
 /// Relative size below which a change of `L_A` is treated as rounding noise.
 const NOISE: f64 = 1e-10;
 
@@ -58,7 +66,11 @@ pub struct AugLagLevenbergMarquardt;
 
 impl Solver for AugLagLevenbergMarquardt {
     fn solve(&self, problem: &mut dyn Problem, x0: &[f64], settings: &Settings, observer: &mut dyn FnMut(&Progress)) -> Outcome {
-        solve_with(problem, x0, settings, observer, |eval| LevenbergMarquardt::new(eval, false))
+        let escalate = |eval: &Evaluation| LevenbergMarquardt {
+            escalate_after: Some(ESCALATE_AFTER),
+            ..LevenbergMarquardt::new(eval, false)
+        };
+        solve_with(problem, x0, settings, observer, escalate)
     }
 }
 
@@ -96,14 +108,24 @@ struct LevenbergMarquardt {
     /// Recompute the secant approximation by differences every this many iterations (0: never).
     refresh_every: usize,
     since_refresh: usize,
+    /// Gauss–Newton until an inner solve has taken this many steps without converging, then the
+    /// second-order term for the rest of the solve (`None`: never).
+    escalate_after: Option<usize>,
+    /// Recompute the exact second-order term every this many models (1: every iteration).
+    exact_refresh: usize,
+    /// Set at the start of an inner solve: the next model recomputes the exact term.
+    fresh: bool,
 }
 
 /// Where the model's second-order term comes from.
 enum SecondOrder {
     /// Nowhere: Gauss–Newton.
     None,
-    /// From the problem if it provides one (not asked yet, or it did last time).
+    /// From the problem if it provides one (not asked yet).
     Problem,
+    /// The problem's exact term, as last computed `age` models ago; recomputed every
+    /// `exact_refresh` models and at the start of each inner solve (the row weights jump there).
+    Exact { term: SymmetricMatrix, age: usize },
     /// The partitioned secant approximation, built once the problem said it has no term.
     Secant(Box<SecondOrderTerm>),
 }
@@ -133,6 +155,9 @@ impl LevenbergMarquardt {
             second_order: if second_order { SecondOrder::Problem } else { SecondOrder::None },
             refresh_every: SECANT_REFRESH,
             since_refresh: 0,
+            escalate_after: None,
+            exact_refresh: EXACT_REFRESH,
+            fresh: true,
         }
     }
 
@@ -149,10 +174,25 @@ impl LevenbergMarquardt {
         }
         al.gradient(&mut self.gradient_trial); // the row weights at x, which gauss_newton overwrote
         if matches!(self.second_order, SecondOrder::Problem) {
-            if al.add_second_order(x, &mut self.gram) {
-                return Ok(());
+            let mut term = self.gram.clone();
+            term.fill_zero();
+            self.second_order = if al.add_second_order(x, &mut term) {
+                self.fresh = false;
+                SecondOrder::Exact { term, age: 0 }
+            } else {
+                SecondOrder::Secant(Box::new(SecondOrderTerm::new(&al.eval)))
+            };
+        } else if let SecondOrder::Exact { term, age } = &mut self.second_order {
+            *age += 1;
+            if self.fresh || *age >= self.exact_refresh {
+                term.fill_zero();
+                al.add_second_order(x, term);
+                (*age, self.fresh) = (0, false);
             }
-            self.second_order = SecondOrder::Secant(Box::new(SecondOrderTerm::new(&al.eval)));
+        }
+        if let SecondOrder::Exact { term, .. } = &self.second_order {
+            self.gram.add_matrix(term);
+            return Ok(());
         }
         let SecondOrder::Secant(term) = &mut self.second_order else { unreachable!("set just above") };
         term.remember(x, &al.eval, al.gradient_weights());
@@ -256,6 +296,18 @@ impl InnerSolver for LevenbergMarquardt {
         50
     }
 
+    /// The structured solver's inner solves are capped: a first one far from feasibility can creep for
+    /// thousands of steps (`lift_stoop`'s second start: 5000 steps uncapped, converged in 1855 capped).
+    /// The Newton solver's are not: on the push-up's closed loop its long inner solves do converge, and
+    /// capped they stopped without progress at N = 28–32 (docs/performance.md).
+    fn inner_budget(&self, settings: &Settings) -> usize {
+        if self.escalate_after.is_some() {
+            settings.max_inner_iterations
+        } else {
+            usize::MAX
+        }
+    }
+
     fn minimise(
         &mut self,
         al: &mut AugmentedLagrangian<'_>,
@@ -273,6 +325,7 @@ impl InnerSolver for LevenbergMarquardt {
             self.damping = INITIAL_DAMPING;
         }
         self.growth = 2.0;
+        self.fresh = true;
         let mut value = al.value();
         al.gradient(&mut self.gradient);
         let mut iterations = 0;
@@ -288,6 +341,10 @@ impl InnerSolver for LevenbergMarquardt {
             }
             if iterations >= max_iterations {
                 return report(InnerStatus::MaxIterations, iterations);
+            }
+            if self.escalate_after.is_some_and(|k| iterations >= k) && matches!(self.second_order, SecondOrder::None) {
+                // Gauss–Newton is crawling (linear convergence on large residuals): add the curvature.
+                self.second_order = SecondOrder::Problem;
             }
             if let Err(m) = self.assemble(al, x) {
                 return report(InnerStatus::EvaluationError(m), iterations);

@@ -142,6 +142,21 @@ impl SymmetricMatrix {
         }
     }
 
+    /// `A += B`, `B` of the same size and storage.
+    ///
+    /// # Panics
+    /// If the sizes or storages differ.
+    pub fn add_matrix(&mut self, other: &SymmetricMatrix) {
+        assert_eq!(self.n, other.n);
+        match (&mut self.storage, &other.storage) {
+            (Storage::Banded { bandwidth: a, band }, Storage::Banded { bandwidth: b, band: other }) if a == b => {
+                band.iter_mut().zip(other).for_each(|(x, y)| *x += y);
+            }
+            (Storage::Dense(m), Storage::Dense(other)) => *m += other,
+            _ => panic!("add_matrix: the storages differ"),
+        }
+    }
+
     /// The diagonal entry `A[i][i]`.
     pub fn diagonal(&self, i: usize) -> f64 {
         self.get(i, i)

@@ -44,6 +44,12 @@ pub struct Settings {
     pub max_iterations: usize,
     /// Multiplier updates allowed.
     pub max_outer_iterations: usize,
+    /// Accepted steps allowed in one inner minimisation (fixed multipliers and penalty) of the structured
+    /// solver (Newton's and the paper's BFGS run each to its tolerance or a stall); then the
+    /// multipliers and penalty are updated all the same. An inexact inner solve is what the safeguarded
+    /// method of multipliers allows (Birgin & Martínez 2014, Alg. 4.1); without a cap a first inner solve
+    /// far from feasibility can creep for thousands of steps (docs/performance.md).
+    pub max_inner_iterations: usize,
     /// Initial penalty weight `w_p` of eq. 10. `None`: chosen from the starting point,
     /// `w_p = 5·max(1, |F|) / max(1, ½‖c‖²)` clamped to `[10⁻⁸, 10⁸]` (`c` the scaled violations), as in
     /// Birgin & Martínez's ALGENCAN, so that penalty and objective start on a par.
@@ -94,6 +100,7 @@ impl Default for Settings {
             tol_violation: 1e-6,
             max_iterations: 5000,
             max_outer_iterations: 60,
+            max_inner_iterations: 400,
             initial_penalty: None,
             penalty_growth: 10.0,
             violation_decrease: 0.25,
@@ -150,6 +157,18 @@ pub enum StopReason {
     /// vanished or made no progress for a while (typically a tolerance below what rounding and the problem's
     /// conditioning allow). `Outcome::worst_constraint` says which constraint is worst at that point.
     Stalled,
+    /// No progress over several multiplier updates: `inner_solves` successive inner minimisations each used
+    /// their whole budget (`Settings::max_inner_iterations`) and none halved the distance to the
+    /// convergence test (`max(stationarity/tol, violation/tol)`). `Outcome::worst_constraint` names the
+    /// worst constraint there.
+    NoProgress {
+        /// Successive inner solves without progress.
+        inner_solves: usize,
+        /// Scaled stationarity at the end.
+        stationarity: f64,
+        /// Scaled violation at the end.
+        violation: f64,
+    },
     /// The penalty reached its maximum and the constraints are still violated: probably no feasible point
     /// near here. Names the worst constraint and its scaled violation.
     Infeasible {
@@ -178,6 +197,11 @@ impl fmt::Display for StopReason {
             StopReason::MaxIterations => f.write_str("iteration limit reached"),
             StopReason::LineSearchFailed => f.write_str("line search failed to find an acceptable step"),
             StopReason::Stalled => f.write_str("stalled: no further progress at this precision"),
+            StopReason::NoProgress { inner_solves, stationarity, violation } => write!(
+                f,
+                "no progress: {inner_solves} successive inner solves used their whole budget and left the \
+                 stationarity at {stationarity:.2e} and the scaled violation at {violation:.2e}"
+            ),
             StopReason::Infeasible { worst, violation } => {
                 write!(f, "infeasible: {worst} still violated by {violation:.3e} (scaled) at the largest penalty")
             }

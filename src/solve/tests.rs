@@ -647,3 +647,20 @@ fn solve_unattainable_tolerance_ends_honestly() {
         }
     }
 }
+
+/// An inner budget too small to make headway: the solve stops early, saying there is no progress and
+/// where it stands — not at the iteration limit thousands of steps later. The same problem with the
+/// default budget converges (the opposite condition).
+#[test]
+fn solve_without_progress_says_so_early() {
+    let mut p = rosenbrock();
+    let starved = Settings { max_inner_iterations: 1, ..tight() };
+    let a = AugLagLevenbergMarquardt.solve(&mut p, &[-1.2, 1.0], &starved, &mut |_| {});
+    assert!(!a.converged, "{}", summary(&a));
+    let StopReason::NoProgress { inner_solves, stationarity, .. } = a.reason else { panic!("{}", summary(&a)) };
+    assert!(inner_solves >= 3 && stationarity > 1e-10, "{}", summary(&a));
+    assert!(a.iterations < 100, "{}", summary(&a));
+    assert!(a.reason.to_string().contains("no progress"), "{}", a.reason);
+    let b = AugLagLevenbergMarquardt.solve(&mut p, &[-1.2, 1.0], &tight(), &mut |_| {});
+    assert_converged(&b, "Rosenbrock, default inner budget");
+}
