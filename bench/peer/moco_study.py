@@ -205,7 +205,7 @@ def effort_on_grid(solution, names, weights):
         raise SystemExit(f"Moco's grid has {len(t)} points: not a Hermite-Simpson grid (2M + 1)")
     # Simpson per interval [t_2k, t_2k+2]: (h/6)(f_2k + 4 f_2k+1 + f_2k+2), h = t_2k+2 - t_2k.
     h = t[2::2] - t[:-2:2]
-    return float((h / 6.0 * (f[:-2:2] + 4.0 * f[1::2] + f[2::2])).sum()), t, labels
+    return float((h / 6.0 * (f[:-2:2] + 4.0 * f[1::2] + f[2::2])).sum()), t
 
 
 def main():
@@ -237,7 +237,7 @@ def main():
     solution = study.solve()
     solution.unseal()
     weights = task.get("objective", {}).get("weights", {}) or {}
-    F_grid, t, labels = effort_on_grid(solution, names, weights)
+    F_grid, t = effort_on_grid(solution, names, weights)
     F_reported = 0.5 * solution.getObjective()
     out_dir = d / "moco"
     out_dir.mkdir(exist_ok=True)
