@@ -224,6 +224,9 @@ def main():
         raise SystemExit(f"unsupported by the Moco peer: {', '.join(unsupported)}")
     names = plan["joint_names"]
     joints = figure_joints(figure, names)
+    if not (d / "model.osim").exists():
+        raise SystemExit(f"{d / 'model.osim'} missing: write it with `mintorque export {d} --format osim -o "
+                         f"{d / 'model.osim'}`")
     model = osim.Model(str(d / "model.osim"))
     add_passive(model, names, joints)
     model.finalizeConnections()
