@@ -42,6 +42,8 @@ import casadi as ca  # noqa: E402
 import numpy as np  # noqa: E402
 import pinocchio as pin  # noqa: E402
 
+from task_features import unsupported_features  # noqa: E402
+
 
 # ---------------------------------------------------------------- the model
 
@@ -496,26 +498,7 @@ def main():
                        stdout=subprocess.DEVNULL)
     # Features this peer does not transcribe: refuse rather than solve another problem.
     c = task.get("constraints", {})
-    env = task.get("environment", {})
-    unsupported = []
-    if c.get("contact"):
-        unsupported.append("constraints.contact")
-    if c.get("balance"):
-        unsupported.append("constraints.balance")
-    if env.get("force"):
-        unsupported.append("environment.force")
-    if task.get("objective", {}).get("kind", "torque") != "torque":
-        unsupported.append("objective.kind")
-    guess = task.get("discretization", {}).get("initial_guess", "linear")
-    if guess != "linear":
-        unsupported.append(f"discretization.initial_guess = {guess!r}")
-    if not task.get("motion", {}).get("zero_end_velocity", True):
-        unsupported.append("motion.zero_end_velocity = false")
-    for end in ("start_condition", "goal_condition"):
-        if task.get("motion", {}).get(end, "rest") != "rest":
-            unsupported.append(f"motion.{end}")
-    if task.get("motion", {}).get("frame_goal"):
-        unsupported.append("motion.frame_goal")
+    unsupported = unsupported_features(task)
     if unsupported:
         raise SystemExit(f"unsupported by the peer transcription: {', '.join(unsupported)}")
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Creates bench/peer/.venv (git-ignored) with pinned PyPI versions of the peer's tools.
 #   bash bench/peer/setup.sh            # casadi + pin (Pinocchio)
-#   MOCO=1 bash bench/peer/setup.sh     # also opensim (Moco), optional
+# OpenSim Moco has its own venv, target/opensim-venv (scripts/opensim-venv.sh, which run.sh calls).
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 venv="$here/.venv"
@@ -13,9 +13,6 @@ fi
     casadi==3.7.2 \
     pin==4.1.0 \
     numpy==2.4.6
-if [ "${MOCO:-0}" = "1" ]; then
-    "$venv/bin/pip" install --quiet --disable-pip-version-check opensim==4.6
-fi
 "$venv/bin/python" - <<'PY'
 import casadi, pinocchio, numpy
 print(f"casadi {casadi.__version__}, pinocchio {pinocchio.__version__}, numpy {numpy.__version__}")
