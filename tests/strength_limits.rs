@@ -180,3 +180,21 @@ fn the_strength_objective_on_the_surfaces_moves_load_to_the_stronger_joints() {
     assert!(strength.0 > 1.05 * torque.0, "load moves to the stronger joints: {strength:?} against {torque:?}");
     assert!(strength.2 < 0.9 * torque.2 && strength.1 > torque.1, "{strength:?} against {torque:?}");
 }
+
+/// Bad strength-limit settings are refused, naming the file and the field.
+#[test]
+fn bad_strength_limits_are_refused_naming_the_field() {
+    let with = |constraints: &str| RISE.replace("strength_limits = true\nstrength_percentile = 25.0\n", constraints);
+    let cases = [
+        ("strength_limits = true\nstrength_percentile = 0.5\n", &["constraints.strength_percentile", "between 1 and 99"][..]),
+        ("strength_limits = true\nstrength_percentile = 99.5\n", &["constraints.strength_percentile", "got 99.5"][..]),
+        ("strength_percentile = 25.0\n", &["constraints.strength_percentile", "strength_limits = true"][..]),
+        ("strength_limits = true\ntorque_limits = false\n", &["constraints.strength_limits", "torque_limits = false"][..]),
+    ];
+    for (constraints, parts) in cases {
+        common::assert_task_error_mentions(&with(constraints), parts);
+    }
+    // A percentile far enough below the mean that a wide spread leaves no strength.
+    let wide = with("strength_limits = true\nstrength_percentile = 1.0\n") + "\n[ergonomics]\npopulation_cv = 0.5\n";
+    common::assert_task_error_mentions(&wide, &["constraints.strength_percentile", "higher percentile"]);
+}
