@@ -171,14 +171,7 @@ impl Transcription<'_> {
         let (w, h) = (&self.work, &self.hess);
         out.fill(0.0);
         for (l, om) in h.omega.iter().enumerate().filter(|(_, om)| **om != 0.0) {
-            for c in 0..nv {
-                out[c] += om * w.dq[l * nv + c];
-                out[nv + c] += om * w.dv[l * nv + c];
-                out[2 * nv + c] += om * w.da[l * nv + c];
-            }
-            for m in 0..nl {
-                out[3 * nv + m] += om * w.dl[l * nl + m];
-            }
+            self.add_torque_gradient(l, *om, out);
         }
         if h.omega_w.iter().any(|v| *v != 0.0) {
             for c in 0..nv {
@@ -192,6 +185,19 @@ impl Transcription<'_> {
         }
         if self.spec.strength.is_some() {
             self.add_strength_gradient(out);
+        }
+    }
+
+    /// `out += s ∇τ_l` at the state in `self.work`: `[∂/∂q, ∂/∂q̇, ∂/∂q̈, ∂/∂λ̃]`.
+    pub(super) fn add_torque_gradient(&self, l: usize, s: f64, out: &mut [f64]) {
+        let (nv, nl, w) = (self.layout.nv, self.layout.n_lambda, &self.work);
+        for c in 0..nv {
+            out[c] += s * w.dq[l * nv + c];
+            out[nv + c] += s * w.dv[l * nv + c];
+            out[2 * nv + c] += s * w.da[l * nv + c];
+        }
+        for m in 0..nl {
+            out[3 * nv + m] += s * w.dl[l * nl + m];
         }
     }
 

@@ -89,21 +89,14 @@ impl Transcription<'_> {
     /// `∇φ` (`out`, `[∂/∂q, ∂/∂q̇, ∂/∂q̈, ∂/∂λ̃]`) gains the strength parts at the state in `work`:
     /// `ρ_l (f ∂τ_l + τ_l ∂f)` and `−σ± ∂S±`.
     pub(super) fn add_strength_gradient(&self, out: &mut [f64]) {
-        let (nv, nl) = (self.layout.nv, self.layout.n_lambda);
+        let nv = self.layout.nv;
         let (w, h) = (&self.work, &self.hess);
         for l in 0..nv {
             let (q, qd) = (w.q[l], w.qd[l]);
             if h.rho[l] != 0.0 {
                 let f = self.torque_factor(l, h.positive[l], q, qd);
-                let (rf, rt) = (h.rho[l] * f.value, h.rho[l] * w.tau[l]);
-                for c in 0..nv {
-                    out[c] += rf * w.dq[l * nv + c];
-                    out[nv + c] += rf * w.dv[l * nv + c];
-                    out[2 * nv + c] += rf * w.da[l * nv + c];
-                }
-                for m in 0..nl {
-                    out[3 * nv + m] += rf * w.dl[l * nl + m];
-                }
+                let rt = h.rho[l] * w.tau[l];
+                self.add_torque_gradient(l, h.rho[l] * f.value, out);
                 out[l] += rt * f.d1;
                 out[nv + l] += rt * f.d2;
             }
