@@ -5,9 +5,9 @@
 use mintorque::dynamics::joint_loads::{joint_loads, PointForce};
 use mintorque::dynamics::{kinematics, Data};
 use mintorque::model::human::{self, HumanParams, Structure};
+use mintorque::model::strength::{normal_cdf, Source, ANDERSON_2007_MEN_18_25};
 use mintorque::plan::{self, task::Task};
 use mintorque::report::ergonomics::niosh::{recommended_weight_limit, Coupling, Location, WorkDuration};
-use mintorque::report::ergonomics::strength::{normal_cdf, Source, ANDERSON_2007_MEN_18_25};
 use mintorque::report::ergonomics::{self, loads, Setup};
 use mintorque::report::record::PlanRecord;
 use mintorque::spatial::{Force, Vec3};

@@ -309,7 +309,8 @@ fn a_front_filmstrip_goes_beside_the_side_one_for_a_3d_plan_only() {
     }
 }
 
-/// A figure held by the world stands on a ground line; the same figure floating free has none.
+/// A figure held by the world stands on a ground line (and the viewer draws its floor); the same figure
+/// floating free has neither.
 #[test]
 fn a_free_floating_figure_is_drawn_without_ground() {
     const GROUND: &str = r##"stroke="#9aa5b1" stroke-width="1.5""##;
@@ -321,6 +322,8 @@ fn a_free_floating_figure_is_drawn_without_ground() {
             let svg = filmstrip_svg(&model, &rec, 4, view);
             assert_eq!(svg.contains(GROUND), ground, "{} ({view:?})", model.name);
         }
+        let data = embedded_data(&motion_html(&model, &rec, None)).expect("the page embeds parseable JSON");
+        assert_eq!(data["floor"].as_bool(), Some(ground), "{}: the viewer's floor", model.name);
     }
 }
 

@@ -16,6 +16,7 @@ pub mod human;
 pub mod lock;
 pub mod mjcf;
 pub mod osim;
+pub mod strength;
 pub mod toml_doc;
 pub mod urdf;
 pub mod urdf_export;

@@ -220,6 +220,10 @@ pub struct Spec {
     /// Enforce the model's effort limits `|τ| ≤ effort` at the quadrature nodes (default true, as in a
     /// task file).
     pub torque_limits: bool,
+    /// Strength as the torque limit (`constraints.strength_limits`): where a joint has a strength, its
+    /// torque rows are `τ − S₊(q, q̇) ≤ 0`, `−τ − S₋(q, q̇) ≤ 0` and the objective's strength term is
+    /// `τ/S(q, q̇)`; `None`: the effort limits.
+    pub strength: Option<crate::model::strength::Strengths>,
     /// Frames held by the environment.
     pub contacts: Vec<Contact>,
     /// A balance constraint, if any.
@@ -306,6 +310,7 @@ impl Spec {
             terms: Default::default(),
             position_limits: true,
             torque_limits: true,
+            strength: None,
             contacts: vec![],
             balance: None,
             loads: vec![],

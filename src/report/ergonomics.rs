@@ -52,7 +52,7 @@ pub struct Setup {
     /// `[ergonomics.lift]`.
     pub lift: Option<niosh::Lift>,
     /// Every joint's strength, in `q` order.
-    pub strength: Vec<strength::Source>,
+    pub strength: Vec<crate::model::strength::Source>,
     /// `σ/T` at constant joints.
     pub population_cv: f64,
     /// Whether the strength model (shares of strength, the population capable) applies: to a person — a
@@ -73,13 +73,9 @@ impl Setup {
             })?),
             None => model.dof_index("lumbar"),
         };
-        let population_cv = e.population_cv.unwrap_or(strength::DEFAULT_CV);
-        if !(population_cv.is_finite() && population_cv > 0.0 && population_cv < 1.0) {
-            let message = format!("must be a coefficient of variation between 0 and 1, got {population_cv}");
-            return Err(Error::task(origin, "ergonomics.population_cv", message));
-        }
+        let population_cv = crate::plan::task::strength::population_cv(file, origin)?;
         let lift = e.lift.as_ref().map(|l| niosh::resolve(l, file, model, &spec.gravity, origin)).transpose()?;
-        let strength = strength::resolve(file, model, origin)?;
+        let strength = crate::plan::task::strength::resolve(file, model, origin)?;
         let population = file.model.human.is_some() || !e.strength.is_empty();
         Ok(Setup { lumbar, lift, strength, population_cv, population })
     }

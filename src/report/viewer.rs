@@ -117,6 +117,8 @@ pub fn scene_json(model: &Model, record: &PlanRecord, summary: Value) -> Value {
         "collision": model.bodies.iter().map(|b| record.collision_shapes.iter().filter(|c| c.body == b.name)
             .map(|c| shape_json(&c.shape())).collect::<Vec<_>>()).collect::<Vec<_>>(),
         "floor_z": bounds.min.z.min(0.0),
+        // A free-floating figure stands on nothing: no floor is drawn under it.
+        "floor": !model.is_free_floating(),
         "center": v3(&center),
         "extent": extent,
         "times": record.samples.iter().map(|s| s.t).collect::<Vec<_>>(),

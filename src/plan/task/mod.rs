@@ -13,6 +13,7 @@ mod overrides;
 mod resolve;
 pub mod schema;
 mod solids;
+pub mod strength;
 mod up;
 mod view;
 

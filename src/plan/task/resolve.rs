@@ -41,6 +41,7 @@ pub fn resolve(file: &TaskFile, base: &Path, origin: &str) -> Result<Spec> {
     let obstacles = super::solids::obstacles(&env.obstacle, origin)?;
     let collisions = super::solids::collisions(&model, &c.collision, &obstacles, origin)?;
     crate::plan::between::check_settings(&c.between_nodes, origin)?;
+    let strength = super::strength::limits(file, &model, origin)?;
     let mut spec = Spec {
         origin: origin.to_string(),
         gravity,
@@ -57,6 +58,7 @@ pub fn resolve(file: &TaskFile, base: &Path, origin: &str) -> Result<Spec> {
         terms: file.objective.terms,
         position_limits: c.position_limits,
         torque_limits: c.torque_limits,
+        strength,
         contacts,
         balance: c.balance.as_ref().map(|b| Balance { x: b.x, y: b.y, ground_z: b.ground_z }),
         loads,

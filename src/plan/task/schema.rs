@@ -360,6 +360,14 @@ pub struct ConstraintsSection {
     /// Keep torques within the model's effort limits (default true).
     #[serde(default = "yes")]
     pub torque_limits: bool,
+    /// Bound each torque, per direction, by the joint's strength `S(q, q̇)` (`[ergonomics.strength]`,
+    /// Anderson et al. 2007's surfaces at a built-in human's hips, knees and ankles) instead of its effort
+    /// limit; the objective's `strength` term then divides by it too (default false).
+    #[serde(default)]
+    pub strength_limits: bool,
+    /// The population percentile the strength limits are taken at (1–99; default 50, the mean).
+    #[serde(default)]
+    pub strength_percentile: Option<f64>,
     /// Overrides: joint → [lower, upper] in degrees (metres for prismatic).
     #[serde(default, deserialize_with = "exact::map")]
     pub position_limit: BTreeMap<String, [f64; 2]>,
@@ -392,6 +400,8 @@ impl Default for ConstraintsSection {
         ConstraintsSection {
             position_limits: true,
             torque_limits: true,
+            strength_limits: false,
+            strength_percentile: None,
             position_limit: BTreeMap::new(),
             torque_limit: BTreeMap::new(),
             torque_limit_positive: BTreeMap::new(),

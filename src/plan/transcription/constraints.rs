@@ -127,9 +127,13 @@ impl Transcription<'_> {
                 IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) => {
                     let upper = matches!(row, IneqRow::UpperTorque(_));
                     let sign = if upper { 1.0 } else { -1.0 };
-                    out.g[gi] = sign * w.tau[i] - self.effort[usize::from(!upper)][i];
+                    // ±τᵢ − S±(qᵢ, q̇ᵢ) (S the effort limit, constant, without strength limits)
+                    let bound = super::strength::limit_of(self.spec, &self.effort, i, upper, w.q[i], w.qd[i]);
+                    out.g[gi] = sign * w.tau[i] - bound.value;
                     if want_jac {
-                        Self::chain_rule(&self.layout, &basis, sign, w.torque_row(i, nv, nl), out.jg.row_values_mut(gi));
+                        let vals = out.jg.row_values_mut(gi);
+                        Self::chain_rule(&self.layout, &basis, sign, w.torque_row(i, nv, nl), vals);
+                        Self::subtract_limit_slope(&self.layout, &basis, i, &bound, vals);
                     }
                 }
                 IneqRow::Push(c) | IneqRow::Friction(c, _) => {
@@ -210,7 +214,7 @@ impl Transcription<'_> {
         if index >= node_rows {
             return self.goal_violation(index - node_rows, raw);
         }
-        let (_, row) = self.decode_ineq(index);
+        let (node, row) = self.decode_ineq(index);
         let prismatic = |i: usize| self.spec.model.joints[i + 1].kind == crate::model::JointKind::Prismatic;
         match row {
             IneqRow::UpperPosition(i) | IneqRow::LowerPosition(i) if prismatic(i) => {
@@ -218,7 +222,7 @@ impl Transcription<'_> {
             }
             IneqRow::UpperPosition(_) | IneqRow::LowerPosition(_) => format!("{}° past the limit", num(raw.to_degrees())),
             IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) => {
-                let limit = self.torque_bound(i, matches!(row, IneqRow::UpperTorque(_)));
+                let limit = self.torque_limit_at_node(node, i, matches!(row, IneqRow::UpperTorque(_)));
                 let unit = self.force_unit(i);
                 if limit == 0.0 {
                     format!("{} {unit} on an unactuated joint (must be 0)", num(raw))

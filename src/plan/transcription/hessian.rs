@@ -44,6 +44,11 @@ pub(super) struct HessianWork {
     s: Vec<f64>,
     /// Per-node weights: `ω` (nv) and `ω_W`.
     pub(super) omega: Vec<f64>,
+    /// The weights `ρ` of residuals `f(qᵢ, q̇ᵢ) τᵢ` whose factor varies (`strength.rs`), the direction
+    /// each `τᵢ` points to at the node, and the multipliers `σ` of the strength rows (`[+, −]`).
+    pub(super) rho: Vec<f64>,
+    pub(super) positive: Vec<bool>,
+    pub(super) sigma: [Vec<f64>; 2],
     omega_w: [f64; 6],
     /// The node's unknowns: global column, and up to three (z index, coefficient) pairs.
     local: Vec<LocalUnknown>,
@@ -60,6 +65,9 @@ impl HessianWork {
             grad_perturbed: vec![0.0; d],
             s: vec![0.0; d * d],
             omega: vec![0.0; nv],
+            rho: vec![0.0; nv],
+            positive: vec![true; nv],
+            sigma: [vec![0.0; nv], vec![0.0; nv]],
             omega_w: [0.0; 6],
             local: Vec::with_capacity(4 * (nv + nl)),
             torques_only: false,
@@ -114,13 +122,22 @@ impl Transcription<'_> {
         let sw = self.nodes.w[k].sqrt();
         // The node residual is f(τ_l) τ_l with f constant on each side of 0 (the strength term's bound per
         // direction): the sign of τ at the node picks f.
-        let by_sign = self.spec.terms.strength > 0.0 && self.asymmetric_limits();
+        // Under strength limits f also depends on qᵢ, q̇ᵢ: those residuals go to ρ (`strength.rs`).
+        let by_sign = self.spec.terms.strength > 0.0 && (self.asymmetric_limits() || self.spec.strength.is_some());
         if by_sign {
             self.eval_node(k, false);
         }
         for l in 0..nv {
-            let f = self.torque_factor(l, if by_sign { self.work.tau[l] } else { 1.0 });
-            self.hess.omega[l] = w_r[k * nv + l] * sw * f;
+            let (positive, q, qd) =
+                if by_sign { (self.work.tau[l] >= 0.0, self.work.q[l], self.work.qd[l]) } else { (true, 0.0, 0.0) };
+            let weight = w_r[k * nv + l] * sw;
+            let varies = self.factor_varies(l);
+            let f = if varies { 0.0 } else { self.torque_factor(l, positive, q, qd).value };
+            self.hess.omega[l] = weight * f;
+            self.hess.rho[l] = if varies { weight } else { 0.0 };
+            self.hess.positive[l] = positive;
+            self.hess.sigma[0][l] = 0.0;
+            self.hess.sigma[1][l] = 0.0;
         }
         self.torque_change_weights(k, w_r);
         self.root_weights(k, w_h);
@@ -130,8 +147,14 @@ impl Transcription<'_> {
         for (r, row) in self.ineq_rows.iter().enumerate() {
             let w = w_g[k * per + r];
             match *row {
-                IneqRow::UpperTorque(i) => h.omega[i] += w,
-                IneqRow::LowerTorque(i) => h.omega[i] -= w,
+                IneqRow::UpperTorque(i) => {
+                    h.omega[i] += w;
+                    h.sigma[0][i] += w;
+                }
+                IneqRow::LowerTorque(i) => {
+                    h.omega[i] -= w;
+                    h.sigma[1][i] += w;
+                }
                 IneqRow::Balance(b) if w != 0.0 => {
                     let c = balance_coefficients(b, self.spec.balance.as_ref().expect("balance rows need a balance"));
                     h.omega_w.iter_mut().zip(c).for_each(|(o, c)| *o += w * c);
@@ -139,7 +162,7 @@ impl Transcription<'_> {
                 _ => {}
             }
         }
-        h.omega.iter().chain(&h.omega_w).any(|v| *v != 0.0)
+        h.omega.iter().chain(&h.omega_w).chain(&h.rho).any(|v| *v != 0.0)
     }
 
     /// `∇φ` at the state in `self.work` (after `eval_state(true)`) into `out`: `[∂/∂q, ∂/∂q̇, ∂/∂q̈, ∂/∂λ̃]`.
@@ -148,14 +171,7 @@ impl Transcription<'_> {
         let (w, h) = (&self.work, &self.hess);
         out.fill(0.0);
         for (l, om) in h.omega.iter().enumerate().filter(|(_, om)| **om != 0.0) {
-            for c in 0..nv {
-                out[c] += om * w.dq[l * nv + c];
-                out[nv + c] += om * w.dv[l * nv + c];
-                out[2 * nv + c] += om * w.da[l * nv + c];
-            }
-            for m in 0..nl {
-                out[3 * nv + m] += om * w.dl[l * nl + m];
-            }
+            self.add_torque_gradient(l, *om, out);
         }
         if h.omega_w.iter().any(|v| *v != 0.0) {
             for c in 0..nv {
@@ -166,6 +182,22 @@ impl Transcription<'_> {
             for m in 0..nl {
                 out[3 * nv + m] += dot6(&h.omega_w, &w.w_dl[m]);
             }
+        }
+        if self.spec.strength.is_some() {
+            self.add_strength_gradient(out);
+        }
+    }
+
+    /// `out += s ∇τ_l` at the state in `self.work`: `[∂/∂q, ∂/∂q̇, ∂/∂q̈, ∂/∂λ̃]`.
+    pub(super) fn add_torque_gradient(&self, l: usize, s: f64, out: &mut [f64]) {
+        let (nv, nl, w) = (self.layout.nv, self.layout.n_lambda, &self.work);
+        for c in 0..nv {
+            out[c] += s * w.dq[l * nv + c];
+            out[nv + c] += s * w.dv[l * nv + c];
+            out[2 * nv + c] += s * w.da[l * nv + c];
+        }
+        for m in 0..nl {
+            out[3 * nv + m] += s * w.dl[l * nl + m];
         }
     }
 

@@ -96,7 +96,7 @@ impl Transcription<'_> {
             }
             IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) => {
                 let upper = matches!(row, IneqRow::UpperTorque(_));
-                let limit = self.torque_bound(i, upper);
+                let limit = self.torque_limit_at_node(node, i, upper);
                 let unit = self.force_unit(i);
                 // g = τ − τ⁺ or −τ⁻ − τ: τ = τ⁺ + raw, or −τ⁻ − raw.
                 let (tau, signed) = if upper { (limit + raw, limit) } else { (-limit - raw, -limit) };

@@ -27,6 +27,7 @@ mod node;
 mod objective;
 mod problem;
 mod root;
+mod strength;
 mod terms;
 mod values;
 

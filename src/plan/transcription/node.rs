@@ -178,15 +178,19 @@ impl Transcription<'_> {
         match spec.objective {
             Objective::Torque => {
                 for l in 0..nv {
-                    let s = self.torque_factor(l, self.work.tau[l]);
-                    let w = &mut self.work;
+                    let (q, qd, tau) = (self.work.q[l], self.work.qd[l], self.work.tau[l]);
+                    let f = self.torque_factor(l, tau >= 0.0, q, qd);
+                    let (s, w) = (f.value, &mut self.work);
                     w.res[l] = s * w.tau[l];
                     if jac {
+                        // ∂(f τ) = f ∂τ + τ ∂f, ∂f along q_l and q̇_l only
                         for c in 0..nv {
                             w.rdq[l * nv + c] = s * w.dq[l * nv + c];
                             w.rdv[l * nv + c] = s * w.dv[l * nv + c];
                             w.rda[l * nv + c] = s * w.da[l * nv + c];
                         }
+                        w.rdq[l * nv + l] += tau * f.d1;
+                        w.rdv[l * nv + l] += tau * f.d2;
                         for m in 0..nl {
                             w.rdl[l * nl + m] = s * w.dl[l * nl + m];
                         }

@@ -161,8 +161,11 @@ impl Problem for Transcription<'_> {
                     IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) if self.spec.model.is_unactuated(i) => {
                         format!("zero force of the free root's unactuated joint \"{}\"", joint(i))
                     }
-                    IneqRow::UpperTorque(i) => format!("torque limit (+) of joint \"{}\"", joint(i)),
-                    IneqRow::LowerTorque(i) => format!("torque limit (−) of joint \"{}\"", joint(i)),
+                    IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) => {
+                        let what = if self.limit_varies(i) { "strength" } else { "torque" };
+                        let sign = if matches!(row, IneqRow::UpperTorque(_)) { "+" } else { "−" };
+                        format!("{what} limit ({sign}) of joint \"{}\"", joint(i))
+                    }
                     IneqRow::Push(c) => format!("push-only contact force of \"{}\"", contact(c)),
                     IneqRow::Friction(c, _) => format!("friction cone of \"{}\"", contact(c)),
                     IneqRow::Balance(4) => "balance: feet stay loaded".to_string(),

@@ -6,7 +6,8 @@
 //!
 //! as residuals of `½‖r‖²`, after the node residuals of [`super::Transcription`]:
 //! - torque and strength share the node residual: `rᵢ = √(c_τ Wᵢ + c_s/τᵢ,max²) τᵢ` at each Gauss node
-//!   (times `√wₖ`), `τᵢ,max` the bound of the direction `τᵢ` points to (piecewise constant: `½rᵢ²` is C¹);
+//!   (times `√wₖ`), `τᵢ,max` the bound of the direction `τᵢ` points to (piecewise constant: `½rᵢ²` is C¹;
+//!   under strength limits the strength `S(qᵢ, q̇ᵢ)` of that direction, `strength.rs`);
 //! - minimum torque change (Uno, Kawato & Suzuki 1989): `√(c_Δ/Δtₖ)(τ(tₖ₊₁) − τ(tₖ))` between neighbouring
 //!   quadrature nodes (the ends included) — the exact `½∫τ̇²` of the piecewise-linear interpolant of the
 //!   nodes' torques; it needs only the first-order derivatives of τ, so its Jacobian is exact and the
@@ -113,14 +114,6 @@ impl TermWork {
 }
 
 impl Transcription<'_> {
-    /// The factor `f` of the node residual `f τ_l` (torque and strength terms; the torque objective only).
-    pub(super) fn torque_factor(&self, l: usize, tau: f64) -> f64 {
-        let terms = &self.spec.terms;
-        let bound = self.torque_bound(l, tau >= 0.0);
-        let strength = if bound.is_finite() && bound > 0.0 { terms.strength / (bound * bound) } else { 0.0 };
-        (terms.torque * self.spec.weights[l] + strength).sqrt()
-    }
-
     /// The patterns of the terms' rows (after the node residuals').
     pub(super) fn term_patterns(&self, p: &mut Patterns) {
         let (nv, tw) = (self.layout.nv, &self.terms);
@@ -254,9 +247,9 @@ impl Transcription<'_> {
         // The torque and strength terms share the node residuals: re-weigh each node's torques.
         let (mut torque, mut strength) = (0.0, 0.0);
         for k in 0..self.nodes.t.len() {
-            let tau = self.node_values(k).tau;
-            for (l, t) in tau.iter().enumerate() {
-                let bound = self.torque_bound(l, *t >= 0.0);
+            let v = self.node_values(k);
+            for (l, t) in v.tau.iter().enumerate() {
+                let bound = self.torque_limit(l, *t >= 0.0, v.q[l], v.qd[l]).value;
                 torque += 0.5 * self.nodes.w[k] * self.spec.weights[l] * t * t;
                 if bound.is_finite() && bound > 0.0 {
                     strength += 0.5 * self.nodes.w[k] * (t / bound).powi(2);
