@@ -1,6 +1,8 @@
 //! Shared helpers for the integration tests: the reference data of `tests/data/reference/` and random trees.
 #![allow(dead_code)]
 
+pub mod cli;
+
 use std::path::PathBuf;
 
 /// `tests/data/reference` in the repository (Pinocchio's reference data, with its README). Tests fail
