@@ -169,7 +169,8 @@ enum Command {
         /// Resample to this even rate (Hz; default: the file's mean rate).
         #[arg(long)]
         rate: Option<f64>,
-        /// External loads on the figure over time (CSV: time_s, FRAME.fx_N … FRAME.mz_Nm; world axes).
+        /// External loads on the figure over time: CSV (time_s, FRAME.fx_N … FRAME.mz_Nm; world axes) or
+        /// OpenSim's ExternalLoads .xml with its datafile.
         #[arg(long)]
         loads: Option<PathBuf>,
         /// A BVH motion's length unit: cm (the default, as BVH is usually written) or m.

@@ -10,6 +10,7 @@ pub mod bvh;
 pub mod bvh_file;
 pub mod chain_angles;
 pub mod driver;
+pub mod external_loads;
 pub mod files;
 pub mod loads;
 pub mod motion;
