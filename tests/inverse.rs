@@ -2,9 +2,15 @@
 //! known sines, the spline's derivatives on analytic motions, the readers' units and refusals, and the
 //! whole command on a planned motion, whose torques it must give back.
 
+mod common;
+
+use common::cli;
 use mintorque::inverse::butterworth::filtfilt;
 use mintorque::inverse::spline::CubicSpline;
 use std::f64::consts::PI;
+
+/// The model the command-line tests run on.
+const PENDULUM: &str = "models/double_pendulum.urdf";
 
 fn sine(f: f64, rate: f64, n: usize) -> Vec<f64> {
     (0..n).map(|k| (2.0 * PI * f * k as f64 / rate).sin()).collect()
@@ -214,64 +220,6 @@ fn a_motion_too_short_to_filter_says_so_and_runs_unfiltered() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
-mod cli {
-    use std::path::{Path, PathBuf};
-    use std::process::Command;
-
-    pub fn root() -> &'static Path {
-        Path::new(env!("CARGO_MANIFEST_DIR"))
-    }
-
-    /// Runs mintorque; (exit code, stdout, stderr).
-    pub fn run(args: &[&std::ffi::OsStr]) -> (i32, String, String) {
-        let out = Command::new(env!("CARGO_BIN_EXE_mintorque")).args(args).current_dir(root()).output().unwrap();
-        (
-            out.status.code().unwrap_or(-1),
-            String::from_utf8_lossy(&out.stdout).into(),
-            String::from_utf8_lossy(&out.stderr).into(),
-        )
-    }
-
-    pub fn ok(args: &[&std::ffi::OsStr]) {
-        let (code, _, stderr) = run(args);
-        assert_eq!(code, 0, "{args:?}: {stderr}");
-    }
-
-    /// A Storage file's labels and rows.
-    pub fn storage(path: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
-        let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-        let mut lines = text.lines().skip_while(|l| l.trim() != "endheader").skip(1);
-        let labels = lines.next().unwrap().split('\t').map(String::from).collect();
-        (labels, lines.map(|l| l.split('\t').map(|x| x.parse().unwrap()).collect()).collect())
-    }
-
-    /// The `share` quantile over the samples (1 = the worst) of `max_j |a − b| / max |b|`, torque columns.
-    pub fn relative(a: &[Vec<f64>], b: &[Vec<f64>], share: f64) -> f64 {
-        assert_eq!(a.len(), b.len());
-        let scale = b.iter().flat_map(|r| r[1..].iter()).fold(0.0f64, |m, x| m.max(x.abs()));
-        let mut diffs: Vec<f64> = a
-            .iter()
-            .zip(b)
-            .map(|(x, y)| x[1..].iter().zip(&y[1..]).map(|(p, q)| (p - q).abs()).fold(0.0, f64::max) / scale)
-            .collect();
-        diffs.sort_by(f64::total_cmp);
-        diffs[((diffs.len() - 1) as f64 * share).round() as usize]
-    }
-
-    pub fn inverse(motion: &Path, out: &Path, extra: &[&str]) -> PathBuf {
-        let mut args: Vec<&std::ffi::OsStr> = vec![
-            "inverse".as_ref(),
-            "models/double_pendulum.urdf".as_ref(),
-            motion.as_os_str(),
-            "--out".as_ref(),
-            out.as_os_str(),
-        ];
-        args.extend(extra.iter().map(|s| std::ffi::OsStr::new(*s)));
-        ok(&args);
-        out.join("inverse_dynamics.sto")
-    }
-}
-
 /// The torques of a planned motion are given back by the inverse dynamics of its exported `.mot` and of
 /// its `trajectory.csv`: the plan's `torques.sto` and the command's `inverse_dynamics.sto` agree.
 #[test]
@@ -289,10 +237,24 @@ fn inverse_dynamics_of_a_planned_motion_gives_back_its_torques() {
     cli::ok(&["export".as_ref(), plan.as_os_str(), "--format".as_ref(), "mot".as_ref()]);
     let (labels, planned) = cli::storage(&plan.join("torques.sto"));
     assert_eq!(labels, ["time", "shoulder_moment", "elbow_moment"]);
-    let from_mot = cli::storage(&cli::inverse(&plan.join("double_pendulum.mot"), &dir.join("mot"), &["--no-filter", "-q"]));
-    let from_csv =
-        cli::storage(&cli::inverse(&plan.join("trajectory.csv"), &dir.join("csv"), &["--no-filter", "-q", "--no-plots"]));
-    let filtered = cli::storage(&cli::inverse(&plan.join("double_pendulum.mot"), &dir.join("f1"), &["--filter-hz", "1.5", "-q"]));
+    let from_mot = cli::storage(&cli::inverse(
+        PENDULUM.as_ref(),
+        &plan.join("double_pendulum.mot"),
+        &dir.join("mot"),
+        &["--no-filter", "-q"],
+    ));
+    let from_csv = cli::storage(&cli::inverse(
+        PENDULUM.as_ref(),
+        &plan.join("trajectory.csv"),
+        &dir.join("csv"),
+        &["--no-filter", "-q", "--no-plots"],
+    ));
+    let filtered = cli::storage(&cli::inverse(
+        PENDULUM.as_ref(),
+        &plan.join("double_pendulum.mot"),
+        &dir.join("f1"),
+        &["--filter-hz", "1.5", "-q"],
+    ));
     // The plan is a cubic B-spline: q̈ has kinks at its knots (q⃛ jumps), which a spline through the
     // 100 Hz samples rounds off over a sample or two; between the knots the torques come back closely.
     let (worst, typical) = (cli::relative(&from_mot.1, &planned, 1.0), cli::relative(&from_mot.1, &planned, 0.5));

@@ -68,6 +68,10 @@ fn relative_error(a: &[Vec<f64>], b: &[Vec<f64>], skip: usize) -> f64 {
 }
 
 fn run_opensim(model: &Path, motion: &Path, dir: &Path, cutoff: f64) -> PathBuf {
+    run_opensim_with(model, motion, dir, cutoff, None)
+}
+
+fn run_opensim_with(model: &Path, motion: &Path, dir: &Path, cutoff: f64, loads: Option<&Path>) -> PathBuf {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let python = root.join("target/opensim-venv/bin/python");
     assert!(python.exists(), "{} is missing: run `bash scripts/test-deps.sh` (it makes the OpenSim venv)", python.display());
@@ -75,6 +79,7 @@ fn run_opensim(model: &Path, motion: &Path, dir: &Path, cutoff: f64) -> PathBuf 
         .arg(root.join("tests/inverse/opensim_id.py"))
         .args([model, motion, dir])
         .arg(cutoff.to_string())
+        .args(loads)
         .output()
         .expect("run opensim_id.py");
     assert!(out.status.success(), "opensim_id.py: {}", String::from_utf8_lossy(&out.stderr));
@@ -152,5 +157,91 @@ fn inverse_dynamics_of_a_motion_matches_opensims_tool() {
          OpenSim {f_theirs:.2e}, {f_theirs_ends:.2e}"
     );
     assert!(f_ours < 3e-3, "our 6 Hz filter changes the forces of a 1.45 Hz motion by {f_ours:e} away from the ends");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The loads' data at the motion's times: a push on the right hand (ground axes, at a moving ground
+/// point, with a moment), a force on the left foot (its own axes, at a point fixed in it, with a moment)
+/// and one on the left hand at its origin (no point identifier).
+fn write_loads(dir: &Path) -> PathBuf {
+    let labels: Vec<String> = ["push_v", "push_p", "push_t", "foot_v", "foot_p", "foot_t", "hand_v"]
+        .iter()
+        .flat_map(|id| ["x", "y", "z"].map(|a| format!("{id}{a}")))
+        .collect();
+    let rows: Vec<(f64, Vec<f64>)> = times()
+        .iter()
+        .map(|&t| {
+            let (s, c) = ((2.0 * PI * 0.7 * t).sin(), (2.0 * PI * 0.5 * t).cos());
+            let row = [
+                [30.0 * s, -20.0, 40.0 * c],
+                [0.3 + 0.1 * s, -0.2, 1.2 + 0.1 * c],
+                [2.0 * c, 1.0, -3.0 * s],
+                [10.0, 50.0 * c, 300.0 + 80.0 * s],
+                [0.05, 0.02 * s, -0.06],
+                [1.0 * s, -2.0, 0.5 * c],
+                [-15.0 * c, 10.0 * s, 5.0],
+            ];
+            (t, row.iter().flatten().copied().collect())
+        })
+        .collect();
+    std::fs::write(dir.join("loads.mot"), storage("loads", false, &labels, &rows)).expect("write loads.mot");
+    let force = |name: &str, body: &str, id: &str, axes: &str, point: Option<&str>| {
+        let point = point.map_or(String::new(), |p| {
+            format!("<point_expressed_in_body>{axes}</point_expressed_in_body><point_identifier>{p}</point_identifier>")
+        });
+        let torque = if point.is_empty() {
+            String::new()
+        } else {
+            format!("<torque_identifier>{}t</torque_identifier>", &id[..id.len() - 1])
+        };
+        format!(
+            "<ExternalForce name=\"{name}\"><applied_to_body>{body}</applied_to_body>\
+             <force_expressed_in_body>{axes}</force_expressed_in_body>{point}\
+             <force_identifier>{id}</force_identifier>{torque}</ExternalForce>\n"
+        )
+    };
+    let xml = format!(
+        "<?xml version=\"1.0\" encoding=\"UTF-8\" ?>\n<OpenSimDocument Version=\"40000\">\n<ExternalLoads name=\"loads\">\n<objects>\n{}{}{}</objects>\n\
+         <groups />\n<datafile>loads.mot</datafile>\n</ExternalLoads>\n</OpenSimDocument>\n",
+        force("push", "r_hand", "push_v", "ground", Some("push_p")),
+        force("foot", "l_foot", "foot_v", "l_foot", Some("foot_p")),
+        force("hand", "l_hand", "hand_v", "ground", None)
+    );
+    std::fs::write(dir.join("loads.xml"), xml).expect("write loads.xml");
+    dir.join("loads.xml")
+}
+
+/// OpenSim's ExternalLoads XML, read by both on the same model and motion: the change the loads make to
+/// the generalized forces, ours against OpenSim's (the spline differences of the motion cancel), and the
+/// loaded forces themselves.
+#[test]
+fn external_loads_xml_change_the_forces_as_in_opensims_tool() {
+    let dir = std::env::temp_dir().join(format!("mintorque-inverse-opensim-loads-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let human = model::load_any(&Path::new(env!("CARGO_MANIFEST_DIR")).join("models/human36.urdf")).expect("human36");
+    let (model_path, motion_path) = (dir.join("human36.osim"), dir.join("smooth.mot"));
+    std::fs::write(&model_path, osim::to_osim(&human)).expect("write .osim");
+    let model = osim::load_model(&model_path).expect("read back");
+    write_motion(&model, &motion_path);
+    let loads = write_loads(&dir);
+    let labels = generalized_force_labels(&model);
+    let free = ["--no-filter"];
+    let theirs = forces(&run_opensim_with(&model_path, &motion_path, &dir.join("o0"), -1.0, None), &labels);
+    let theirs_loaded = forces(&run_opensim_with(&model_path, &motion_path, &dir.join("o1"), -1.0, Some(&loads)), &labels);
+    let ours = forces(&run_ours(&model_path, &motion_path, &dir.join("m0"), &free), &labels);
+    let loaded_args = ["--no-filter", "--loads", loads.to_str().unwrap()];
+    let ours_loaded = forces(&run_ours(&model_path, &motion_path, &dir.join("m1"), &loaded_args), &labels);
+    let change = |a: &[Vec<f64>], b: &[Vec<f64>]| -> Vec<Vec<f64>> {
+        a.iter().zip(b).map(|(x, y)| x.iter().zip(y).map(|(p, q)| p - q).collect()).collect()
+    };
+    let (ours_change, theirs_change) = (change(&ours_loaded, &ours), change(&theirs_loaded, &theirs));
+    let skip = 10;
+    let (e_change, e_loaded) =
+        (relative_error(&ours_change, &theirs_change, 0), relative_error(&ours_loaded, &theirs_loaded, skip));
+    let scale = theirs_change.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
+    eprintln!(
+        "external loads: the change they make, ours vs OpenSim {e_change:.2e} of its peak (all samples); the loaded forces {e_loaded:.2e} (inner samples); the change's peak {scale:.1} N·m"
+    );
+    assert!(scale > 0.0 && e_change < 1e-4 && e_loaded < 1e-3, "{e_change:e} {e_loaded:e}");
     std::fs::remove_dir_all(&dir).ok();
 }

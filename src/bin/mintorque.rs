@@ -148,13 +148,14 @@ enum Command {
         #[arg(long, default_value_t = 4000, value_parser = clap::value_parser!(u64).range(1..))]
         steps: u64,
     },
-    /// Inverse dynamics of a recorded motion (OpenSim .mot/.sto or CSV; docs/interop.md): resampled,
+    /// Inverse dynamics of a recorded motion (OpenSim .mot/.sto, CSV or BVH; docs/interop.md): resampled,
     /// low-pass filtered, differentiated by splines; torques as OpenSim's .sto and CSV, plots, ergonomics.
     Inverse {
         /// A URDF, MJCF, figure file or (uncoupled) OpenSim model.
         model: PathBuf,
-        /// The motion: .mot/.sto (time and one column per joint; inDegrees as the header says) or .csv
-        /// (time and one column per joint, degrees or metres; `NAME.q_rad` for radians).
+        /// The motion: .mot/.sto (time and one column per joint; inDegrees as the header says), .csv
+        /// (time and one column per joint, degrees or metres; `NAME.q_rad` for radians) or .bvh (joints
+        /// named as `export --format bvh` names them, Euler channels in any order, degrees).
         motion: PathBuf,
         /// Output directory (new, empty, or one this command wrote): replaced whole.
         #[arg(long, short)]
@@ -168,9 +169,13 @@ enum Command {
         /// Resample to this even rate (Hz; default: the file's mean rate).
         #[arg(long)]
         rate: Option<f64>,
-        /// External loads on the figure over time (CSV: time_s, FRAME.fx_N … FRAME.mz_Nm; world axes).
+        /// External loads on the figure over time: CSV (time_s, FRAME.fx_N … FRAME.mz_Nm; world axes) or
+        /// OpenSim's ExternalLoads .xml with its datafile.
         #[arg(long)]
         loads: Option<PathBuf>,
+        /// A BVH motion's length unit: cm (the default, as BVH is usually written) or m.
+        #[arg(long)]
+        units: Option<String>,
         /// No summary on stdout.
         #[arg(long, short)]
         quiet: bool,
@@ -434,10 +439,10 @@ fn run(cli: Cli) -> Result<ExitCode> {
             Ok(ExitCode::SUCCESS)
         }
         Command::Simulate { plan: path, steps } => Ok(exit(run_simulate(&path, steps)?)),
-        Command::Inverse { model, motion, out, filter_hz, no_filter, rate, loads, quiet, no_plots, read } => {
+        Command::Inverse { model, motion, out, filter_hz, no_filter, rate, loads, units, quiet, no_plots, read } => {
             let model = load_model(&model, read)?;
-            let loads = loads.as_deref();
-            let args = inverse::Args { motion: &motion, out: &out, filter_hz, no_filter, rate, loads, quiet, no_plots };
+            let (loads, units) = (loads.as_deref(), units.as_deref());
+            let args = inverse::Args { motion: &motion, out: &out, filter_hz, no_filter, rate, loads, units, quiet, no_plots };
             inverse::run(&model, &args).map(|()| ExitCode::SUCCESS)
         }
         Command::Dynamics { model, states, gravity, bench, read } => {

@@ -57,6 +57,7 @@ pub struct FilterSummary {
 pub fn summary(model: &Model, inverse: &Inverse, motion: &str, loads: Option<String>) -> crate::Result<InverseSummary> {
     let r = &inverse.record;
     let span = [r.samples.first().map_or(0.0, |s| s.t), r.samples.last().map_or(0.0, |s| s.t)];
+    let loads_given = loads.is_some();
     let kind = "zero-lag 4th-order Butterworth low-pass (2nd order run forward and backward), odd-reflection padding";
     Ok(InverseSummary {
         format: SUMMARY_FORMAT,
@@ -70,8 +71,20 @@ pub fn summary(model: &Model, inverse: &Inverse, motion: &str, loads: Option<Str
         filter: inverse.settings.filter_hz.map(|cutoff_hz| FilterSummary { kind, cutoff_hz }),
         derivatives: "not-a-knot cubic interpolating spline through the (filtered) samples",
         gravity: r.gravity,
-        ergonomics: ergonomics::ergonomics(model, r, &BTreeMap::new())?,
+        ergonomics: report(model, r, loads_given)?,
     })
+}
+
+/// The ergonomic report of the processed motion, with the L5/S1 load of the joint named `lumbar` when
+/// the model has one (as the planner's default) and no external loads act (the joint loads are computed
+/// without them).
+fn report(model: &Model, r: &crate::report::record::PlanRecord, loads_given: bool) -> crate::Result<Ergonomics> {
+    let mut report = ergonomics::ergonomics(model, r, &BTreeMap::new())?;
+    if let (Some(lumbar), false) = (model.dof_index("lumbar"), loads_given) {
+        let series = ergonomics::loads::series(model, r, &[])?;
+        report.low_back = Some(ergonomics::lumbar::low_back(model, r, &series, lumbar));
+    }
+    Ok(report)
 }
 
 /// Every file of the output directory but the manifest, by name; the plots unless `no_plots`.

@@ -10,7 +10,7 @@ use super::table;
 use crate::dynamics::{kinematics::frame_placement, point_force, Data};
 use crate::error::{Error, Result};
 use crate::model::Model;
-use crate::spatial::{Force, Vec3};
+use crate::spatial::{Force, Mat3, Vec3};
 use std::path::Path;
 
 /// The loads of a file, by frame.
@@ -24,22 +24,39 @@ pub struct Loads {
     pub loads: Vec<Load>,
 }
 
-/// One frame's load over the file's times.
+/// One load over the file's times: a force at a point and a moment, on the body of a frame.
 #[derive(Clone, Debug)]
 pub struct Load {
-    /// The model frame's index.
+    /// The model frame it is applied to (its body's path takes it).
     pub frame: usize,
-    /// Force (N, world) at each time.
+    /// Force (N) at each time, in the axes of `expressed_in`.
     pub force: Vec<Vec3>,
-    /// Moment (N·m, world) at each time (zero when the file gives none).
+    /// Moment (N·m) at each time, in the axes of `expressed_in` (zero when the file gives none).
     pub moment: Vec<Vec3>,
+    /// The frame whose axes the force and moment are in; `None`: the world's.
+    pub expressed_in: Option<usize>,
+    /// Where the force acts; `None`: at the origin of `frame`.
+    pub point: Option<Point>,
+}
+
+/// A point of application over the file's times.
+#[derive(Clone, Debug)]
+pub struct Point {
+    /// Its coordinates (m) at each time, in `expressed_in`.
+    pub values: Vec<Vec3>,
+    /// The frame they are in (carried along with it); `None`: the world.
+    pub expressed_in: Option<usize>,
 }
 
 const FORCE: [&str; 3] = ["fx_N", "fy_N", "fz_N"];
 const MOMENT: [&str; 3] = ["mx_Nm", "my_Nm", "mz_Nm"];
 
-/// Reads a loads file for `model`.
+/// Reads a loads file for `model`: CSV as above, `.xml` as OpenSim's ExternalLoads
+/// ([`super::external_loads`]).
 pub fn read(path: &Path, model: &Model) -> Result<Loads> {
+    if path.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("xml")) {
+        return super::external_loads::read(path, model);
+    }
     let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
     parse(&text, &path.display().to_string(), model)
 }
@@ -95,7 +112,7 @@ fn load(t: &table::Table, model: &Model, frame: &str) -> Result<Load> {
             }
         }
     };
-    Ok(Load { frame: index, force: vectors(FORCE, true)?, moment: vectors(MOMENT, false)? })
+    Ok(Load { frame: index, force: vectors(FORCE, true)?, moment: vectors(MOMENT, false)?, expressed_in: None, point: None })
 }
 
 impl Loads {
@@ -115,10 +132,17 @@ impl Loads {
         for load in &self.loads {
             // Linear interpolation: x(t) = (1 − w) xₖ + w xₖ₊₁.
             let lerp = |x: &[Vec3]| x[k] * (1.0 - w) + x[(k + 1).min(x.len() - 1)] * w;
-            let (f, m) = (lerp(&load.force), lerp(&load.moment));
+            // In world axes: f = R_e·f_e, m = R_e·m_e; the point p = X_e·p_e, or the frame's origin.
+            let axes = load.expressed_in.map_or(Mat3::identity(), |e| frame_placement(model, data, e).rotation);
+            let (f, m) = (axes * lerp(&load.force), axes * lerp(&load.moment));
             let body = model.frames[load.frame].body;
             let path = point_force::path_dofs(model, body);
-            let p = frame_placement(model, data, load.frame).translation;
+            let p = match &load.point {
+                None => frame_placement(model, data, load.frame).translation,
+                Some(pt) => {
+                    pt.expressed_in.map_or(lerp(&pt.values), |e| frame_placement(model, data, e).act_point(&lerp(&pt.values)))
+                }
+            };
             point_force::add_generalized_force(data, &path, &p, &(-f), tau);
             let moment = Force::new(-m, Vec3::zeros());
             for &j in &path {

@@ -1,12 +1,16 @@
 //! Inverse dynamics of recorded motion — what OpenSim's inverse dynamics tool does, on any model: a
-//! motion file ([`motion`]: OpenSim Storage `.mot`/`.sto` or CSV) read into SI and the model's joint
+//! motion file ([`motion`]: OpenSim Storage `.mot`/`.sto`, CSV or BVH ([`bvh`])) read into SI and the model's joint
 //! order, resampled evenly and differentiated by a not-a-knot cubic spline ([`spline`]), low-pass filtered
 //! without phase lag ([`butterworth`]), and the joint torques `τ = RNEA(q, q̇, q̈)` at every sample
 //! ([`driver`]), with external loads from a file ([`loads`]), written as OpenSim's `.sto` of generalized forces, CSV, plots and the ergonomic report
 //! ([`files`]). `docs/interop.md` ("Inverse dynamics of recorded motion") documents the formats.
 
 pub mod butterworth;
+pub mod bvh;
+pub mod bvh_file;
+pub mod chain_angles;
 pub mod driver;
+pub mod external_loads;
 pub mod files;
 pub mod loads;
 pub mod motion;

@@ -9,6 +9,8 @@
 //!   (the `trajectory.csv` of a plan directory is read as it is: its `.qd_*`, `.qdd_*`, `.tau_*` and
 //!   contact-force columns are skipped).
 //!
+//! - **BVH**: see [`super::bvh`].
+//!
 //! Refused, naming the file: columns that do not match the model's joints (the missing and the extra
 //! listed), a joint twice, no time column, times that do not increase (the line), too few samples.
 
@@ -16,6 +18,7 @@ use super::spline::MIN_KNOTS;
 use super::table::{self, Table};
 use crate::error::{Error, Result};
 use crate::model::{JointKind, Model};
+use crate::report::export::LengthUnit;
 use std::path::Path;
 
 /// A motion in the model's joint order, SI.
@@ -27,20 +30,31 @@ pub struct Motion {
     pub times: Vec<f64>,
     /// Joint positions at each time (rad or m), one per model joint.
     pub q: Vec<Vec<f64>>,
+    /// What the reader dropped or assumed, one line each, for the terminal and the summary.
+    pub notes: Vec<String>,
 }
 
 /// The largest |joint position| accepted (rad or m), as for a states file.
 const MAX_POSITION: f64 = 1e3;
 
-/// Reads the motion file at `path` for `model`: `.mot` and `.sto` as Storage, `.csv` as CSV.
+/// Reads the motion file at `path` for `model`: `.mot` and `.sto` as Storage, `.csv` as CSV, `.bvh` as
+/// BVH in centimetres.
 pub fn read(path: &Path, model: &Model) -> Result<Motion> {
+    read_with_units(path, model, LengthUnit::Centimetre)
+}
+
+/// As [`read`], a BVH file's lengths in `bvh_unit`.
+pub fn read_with_units(path: &Path, model: &Model, bvh_unit: LengthUnit) -> Result<Motion> {
+    if path.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("bvh")) {
+        return super::bvh::read(path, model, bvh_unit);
+    }
     let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
     let origin = path.display().to_string();
     let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
     match ext.as_deref() {
         Some("mot") | Some("sto") => from_table(&table::parse_storage(&text, &origin)?, model),
         Some("csv") => from_table(&table::parse_csv(&text, &origin)?, model),
-        _ => Err(Error::input(origin, "file name", "a recorded motion must end in .mot, .sto (OpenSim Storage) or .csv")),
+        _ => Err(Error::input(origin, "file name", "a recorded motion must end in .mot, .sto (OpenSim Storage), .csv or .bvh")),
     }
 }
 
@@ -61,7 +75,7 @@ pub fn from_table(table: &Table, model: &Model) -> Result<Motion> {
         table.labels.iter().map(|l| classify(l, table.in_degrees, model, origin)).collect::<Result<_>>()?;
     check_columns(table, &columns, model)?;
     let time = columns.iter().position(|c| matches!(c, Column::Time)).expect("checked");
-    let mut motion = Motion { origin: origin.to_string(), times: Vec::new(), q: Vec::new() };
+    let mut motion = Motion { origin: origin.to_string(), times: Vec::new(), q: Vec::new(), notes: Vec::new() };
     for (row, &line) in table.rows.iter().zip(&table.lines) {
         let mut q = vec![0.0; model.nv()];
         for ((c, value), label) in columns.iter().zip(row).zip(&table.labels) {
@@ -83,11 +97,17 @@ pub fn from_table(table: &Table, model: &Model) -> Result<Motion> {
         motion.times.push(row[time]);
         motion.q.push(q);
     }
-    if motion.times.len() < MIN_KNOTS {
-        let message = format!("has {} samples; inverse dynamics needs at least {MIN_KNOTS}", motion.times.len());
-        return Err(Error::input(origin, "rows", message));
-    }
+    check_length(&motion)?;
     Ok(motion)
+}
+
+/// At least [`MIN_KNOTS`] samples.
+pub(crate) fn check_length(motion: &Motion) -> Result<()> {
+    if motion.times.len() >= MIN_KNOTS {
+        return Ok(());
+    }
+    let message = format!("has {} samples; inverse dynamics needs at least {MIN_KNOTS}", motion.times.len());
+    Err(Error::input(&motion.origin, "rows", message))
 }
 
 /// What column `label` holds: Storage labels are joint names; CSV labels may carry a unit suffix.

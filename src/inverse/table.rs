@@ -27,6 +27,16 @@ fn numbered(text: &str) -> impl Iterator<Item = (usize, &str)> {
 /// An OpenSim Storage file: the header up to `endheader` (its `inDegrees=yes|no` required: without it
 /// the angles' unit is a guess), then labels and rows split at tabs or spaces.
 pub fn parse_storage(text: &str, origin: &str) -> Result<Table> {
+    let table = parse_storage_of_any_unit(text, origin)?;
+    if table.in_degrees.is_none() {
+        let message = "has no `inDegrees=yes` or `inDegrees=no`: say whether the angles are in degrees or radians";
+        return Err(Error::input(origin, "header", message));
+    }
+    Ok(table)
+}
+
+/// A Storage file whose header need not say `inDegrees` (forces, points and torques: N, m, N·m).
+pub fn parse_storage_of_any_unit(text: &str, origin: &str) -> Result<Table> {
     let mut lines = numbered(text);
     let mut in_degrees = None;
     let mut closed = false;
@@ -44,12 +54,8 @@ pub fn parse_storage(text: &str, origin: &str) -> Result<Table> {
     if !closed {
         return Err(Error::input(origin, "header", "has no `endheader` line: not an OpenSim Storage (.mot/.sto) file"));
     }
-    let Some(in_degrees) = in_degrees else {
-        let message = "has no `inDegrees=yes` or `inDegrees=no`: say whether the angles are in degrees or radians";
-        return Err(Error::input(origin, "header", message));
-    };
     let mut table = rows(lines, origin, |l| l.split_whitespace().collect())?;
-    table.in_degrees = Some(in_degrees);
+    table.in_degrees = in_degrees;
     Ok(table)
 }
 

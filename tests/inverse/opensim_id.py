@@ -2,10 +2,11 @@
 """OpenSim's inverse dynamics tool on a model and a motion, for tests/inverse_opensim.rs (OpenSim 4.6 from
 PyPI: scripts/opensim-venv.sh).
 
-  opensim_id.py MODEL.osim MOTION.mot OUT_DIR CUTOFF_HZ
+  opensim_id.py MODEL.osim MOTION.mot OUT_DIR CUTOFF_HZ [EXTERNAL_LOADS.xml]
 
 runs InverseDynamicsTool over the whole motion (forces other than gravity excluded; CUTOFF_HZ -1 leaves the
-coordinates unfiltered, as the tool's lowpass_cutoff_frequency does) and writes OUT_DIR/opensim_id.sto.
+coordinates unfiltered, as the tool's lowpass_cutoff_frequency does), with the ExternalLoads file if given,
+and writes OUT_DIR/opensim_id.sto.
 """
 import os
 import sys
@@ -28,6 +29,8 @@ def main():
     excluded = osim.ArrayStr()
     excluded.append("All")
     tool.setExcludedForces(excluded)
+    if len(sys.argv) > 5:
+        tool.setExternalLoadsFileName(os.path.abspath(sys.argv[5]))
     tool.setResultsDir(os.path.abspath(out_dir))
     tool.setOutputGenForceFileName("opensim_id.sto")
     if not tool.run():

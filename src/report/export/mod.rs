@@ -10,6 +10,7 @@ pub mod mot;
 pub mod resample;
 
 pub use bvh::ChannelSet;
+pub(crate) use bvh::{euler_zxy_near, rest_offset, segments, Segment};
 pub use csv::{AngleUnit, Column, CsvOptions};
 
 use super::record::PlanRecord;

@@ -24,7 +24,9 @@
 mod euler;
 mod skeleton;
 
+pub(crate) use euler::euler_zxy_near;
 pub use skeleton::ChannelSet;
+pub(crate) use skeleton::{segments, Segment};
 
 use super::resample::{even_times, sample_at};
 use super::{body_placements, to_y_up, LengthUnit, Options};
@@ -32,8 +34,7 @@ use crate::error::{Error, Result};
 use crate::model::{JointKind, Model, Shape};
 use crate::report::record::PlanRecord;
 use crate::spatial::{Mat3, Transform, Vec3};
-use euler::euler_zxy_near;
-use skeleton::{channel_names, depth_first, segments, Rotation, Segment};
+use skeleton::{channel_names, depth_first, Rotation};
 use std::fmt::Write as _;
 
 /// A degree of freedom "moves" when it leaves its rest value 0 at some sample (by more than 1e-9 rad or m).
@@ -86,10 +87,7 @@ pub fn bvh(model: &Model, record: &PlanRecord, options: &Options) -> Result<Stri
 impl Writer<'_> {
     /// The offset of segment `s` from its parent at rest, BVH axes, in the file's unit.
     fn rest_offset(&self, s: usize) -> Vec3 {
-        let segment = &self.segments[s];
-        let head = segment.joints.first().map_or(Vec3::zeros(), |&i| self.rest[i].translation);
-        let parent_origin = segment.parent.map_or(Vec3::zeros(), |p| self.rest[self.segments[p].body].translation);
-        to_y_up() * (head - parent_origin) * self.scale
+        rest_offset(&self.rest, &self.segments, s) * self.scale
     }
 
     fn write_segment(&self, out: &mut String, s: usize, depth: usize) {
@@ -152,6 +150,15 @@ impl Writer<'_> {
         let c = to_y_up();
         c * parent.transpose() * turn(self.segments[s].body) * c.transpose()
     }
+}
+
+/// The offset (m, BVH axes) of segment `s`'s head from its parent's body origin at rest (`rest` the
+/// bodies' placements at q = 0): `C·(p_head − p_parent)`.
+pub(crate) fn rest_offset(rest: &[Transform], segments: &[Segment], s: usize) -> Vec3 {
+    let segment = &segments[s];
+    let head = segment.joints.first().map_or(Vec3::zeros(), |&i| rest[i].translation);
+    let parent_origin = segment.parent.map_or(Vec3::zeros(), |p| rest[segments[p].body].translation);
+    to_y_up() * (head - parent_origin)
 }
 
 /// Where a leaf segment ends (body frame), so that the last bone points along the limb: twice the centre
