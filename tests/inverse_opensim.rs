@@ -100,9 +100,18 @@ fn run_ours(model: &Path, motion: &Path, out: &Path, filter: &[&str]) -> PathBuf
     out.join("inverse_dynamics.sto")
 }
 
-#[test]
-fn inverse_dynamics_of_a_motion_matches_opensims_tool() {
-    let dir = std::env::temp_dir().join(format!("mintorque-inverse-opensim-{}", std::process::id()));
+/// What both tests start from: the 36-DOF human written as `.osim` and read back, the smooth motion
+/// written as a `.mot`, in a fresh directory, and the generalized-force labels.
+struct Fixture {
+    dir: PathBuf,
+    model_path: PathBuf,
+    motion_path: PathBuf,
+    model: Model,
+    labels: Vec<String>,
+}
+
+fn fixture(tag: &str) -> Fixture {
+    let dir = std::env::temp_dir().join(format!("{tag}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp dir");
     let human = model::load_any(&Path::new(env!("CARGO_MANIFEST_DIR")).join("models/human36.urdf")).expect("human36");
     let (model_path, motion_path) = (dir.join("human36.osim"), dir.join("smooth.mot"));
@@ -110,6 +119,12 @@ fn inverse_dynamics_of_a_motion_matches_opensims_tool() {
     let model = osim::load_model(&model_path).expect("read back");
     write_motion(&model, &motion_path);
     let labels = generalized_force_labels(&model);
+    Fixture { dir, model_path, motion_path, model, labels }
+}
+
+#[test]
+fn inverse_dynamics_of_a_motion_matches_opensims_tool() {
+    let Fixture { dir, model_path, motion_path, model, labels } = fixture("mintorque-inverse-opensim");
 
     // The exact forces of the analytic motion, τ = RNEA(q(t), q̇(t), q̈(t)).
     let mut data = Data::new(&model);
@@ -216,15 +231,8 @@ fn write_loads(dir: &Path) -> PathBuf {
 /// loaded forces themselves.
 #[test]
 fn external_loads_xml_change_the_forces_as_in_opensims_tool() {
-    let dir = std::env::temp_dir().join(format!("mintorque-inverse-opensim-loads-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    let human = model::load_any(&Path::new(env!("CARGO_MANIFEST_DIR")).join("models/human36.urdf")).expect("human36");
-    let (model_path, motion_path) = (dir.join("human36.osim"), dir.join("smooth.mot"));
-    std::fs::write(&model_path, osim::to_osim(&human)).expect("write .osim");
-    let model = osim::load_model(&model_path).expect("read back");
-    write_motion(&model, &motion_path);
+    let Fixture { dir, model_path, motion_path, labels, .. } = fixture("mintorque-inverse-opensim-loads");
     let loads = write_loads(&dir);
-    let labels = generalized_force_labels(&model);
     let free = ["--no-filter"];
     let theirs = forces(&run_opensim_with(&model_path, &motion_path, &dir.join("o0"), -1.0, None), &labels);
     let theirs_loaded = forces(&run_opensim_with(&model_path, &motion_path, &dir.join("o1"), -1.0, Some(&loads)), &labels);

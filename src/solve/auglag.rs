@@ -126,16 +126,17 @@ impl SlowWatch {
     /// Updates the watch after an outer iteration; the stop reason once [`SLOW_INNER_SOLVES`] inner solves
     /// in a row used their whole budget without progress.
     fn after(&mut self, status: &InnerStatus, a: &Assessment, settings: &Settings) -> Option<StopReason> {
-        let d = (a.stationarity.max(a.complementarity) / settings.tol_stationarity).max(a.violation / settings.tol_violation);
+        let stationarity = a.stationarity.max(a.complementarity);
+        let d = (stationarity / settings.tol_stationarity).max(a.violation / settings.tol_violation);
         let progress = d < 0.5 * self.best;
         self.best = self.best.min(d);
         self.since = match (status, progress) {
             (InnerStatus::MaxIterations, false) => self.since + 1,
             _ => 0,
         };
-        (self.since >= SLOW_INNER_SOLVES).then(|| StopReason::NoProgress {
+        (self.since >= SLOW_INNER_SOLVES).then_some(StopReason::NoProgress {
             inner_solves: self.since,
-            stationarity: a.stationarity.max(a.complementarity),
+            stationarity,
             violation: a.violation,
         })
     }
