@@ -297,9 +297,9 @@ impl InnerSolver for LevenbergMarquardt {
     }
 
     /// The structured solver's inner solves are capped: a first one far from feasibility can creep for
-    /// thousands of steps (`lift_stoop`'s second start: 5000 steps uncapped, converged in 1855 capped).
-    /// The Newton solver's are not: on the push-up's closed loop its long inner solves do converge, and
-    /// capped they stopped without progress at N = 28–32 (docs/performance.md).
+    /// thousands of steps (`lift_stoop`'s second start: 501 steps to converge capped and escalating, 4008
+    /// with uncapped Newton). The Newton solver's are not: on the push-up's closed loop its long inner
+    /// solves do converge, and capped they stopped without progress at N = 28–32 (docs/performance.md).
     fn inner_budget(&self, settings: &Settings) -> usize {
         if self.escalate_after.is_some() {
             settings.max_inner_iterations
