@@ -36,7 +36,9 @@ use crate::solve::Outcome;
 #[serde(rename_all = "kebab-case")]
 pub enum SolverKind {
     /// Augmented Lagrangian whose inner problems are solved by Levenberg–Marquardt on the banded
-    /// least-squares structure (default, fast).
+    /// least-squares structure (default, fast); an inner solve that has taken 100 steps without converging
+    /// (Gauss–Newton crawling on large residuals) adds the exact second-order term to its model for the rest
+    /// of the solve, and an unconverged result is polished by `newton`, then BFGS (docs/performance.md).
     Structured,
     /// The same trust region on the model Gauss–Newton + the exact second-order term of the Lagrangian
     /// (node-wise, banded): 2–7× fewer iterations, dearer ones (docs/performance.md).
@@ -49,7 +51,7 @@ impl SolverKind {
     /// The solver's name and what it is, for reports.
     pub fn name(&self) -> &'static str {
         match self {
-            SolverKind::Structured => "structured (augmented Lagrangian + Levenberg–Marquardt, banded)",
+            SolverKind::Structured => "structured (augmented Lagrangian + Levenberg–Marquardt, banded; second-order when it crawls)",
             SolverKind::Newton => "newton (augmented Lagrangian + second-order trust region, banded)",
             SolverKind::AuglagBfgs => "auglag-bfgs (augmented Lagrangian + BFGS, the paper's method)",
         }

@@ -66,12 +66,21 @@ pub struct AugLagLevenbergMarquardt;
 
 impl Solver for AugLagLevenbergMarquardt {
     fn solve(&self, problem: &mut dyn Problem, x0: &[f64], settings: &Settings, observer: &mut dyn FnMut(&Progress)) -> Outcome {
-        let escalate = |eval: &Evaluation| LevenbergMarquardt {
-            escalate_after: Some(ESCALATE_AFTER),
-            ..LevenbergMarquardt::new(eval, false)
-        };
-        solve_with(problem, x0, settings, observer, escalate)
+        solve_structured(problem, x0, settings, observer, Some(ESCALATE_AFTER))
     }
+}
+
+/// The structured solver, escalating to the second-order model after `escalate_after` steps of one inner
+/// solve (`None`: Gauss–Newton throughout — the opposite condition, for measuring what escalation buys).
+pub(crate) fn solve_structured(
+    problem: &mut dyn Problem,
+    x0: &[f64],
+    settings: &Settings,
+    observer: &mut dyn FnMut(&Progress),
+    escalate_after: Option<usize>,
+) -> Outcome {
+    let inner = |eval: &Evaluation| LevenbergMarquardt { escalate_after, ..LevenbergMarquardt::new(eval, false) };
+    solve_with(problem, x0, settings, observer, inner)
 }
 
 /// The same method of multipliers and trust region as [`AugLagLevenbergMarquardt`] on the model

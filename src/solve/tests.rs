@@ -664,3 +664,59 @@ fn solve_without_progress_says_so_early() {
     let b = AugLagLevenbergMarquardt.solve(&mut p, &[-1.2, 1.0], &tight(), &mut |_| {});
     assert_converged(&b, "Rosenbrock, default inner budget");
 }
+
+/// Dennis & Schnabel's large-residual example (sec. 10.2): `r = (x + 1, λx² + x − 1)`, minimised at `x = 0`
+/// with `F = 1`. There `JᵀJ = 2` and the second-order term `Σ rᵢ∇²rᵢ = −2λ`, so Gauss–Newton's step is
+/// `1/(1 − λ)` times too short and it converges linearly with rate `λ`: ever slower as `λ → 1`.
+struct LargeResidual {
+    lambda: f64,
+}
+
+impl Problem for LargeResidual {
+    fn dims(&self) -> Dims {
+        dims(1, 2, 0, 0)
+    }
+
+    fn jacobian_patterns(&self) -> Patterns {
+        Patterns::dense(self.dims())
+    }
+
+    fn evaluate(&mut self, x: &[f64], want_jac: bool, out: &mut Evaluation) -> Result<(), String> {
+        let (x, l) = (x[0], self.lambda);
+        out.r.copy_from_slice(&[x + 1.0, l * x * x + x - 1.0]);
+        if want_jac {
+            out.jr.row_values_mut(0)[0] = 1.0;
+            out.jr.row_values_mut(1)[0] = 2.0 * l * x + 1.0;
+        }
+        Ok(())
+    }
+}
+
+/// The structured solver adds the curvature to its model once an inner solve crawls: where Gauss–Newton's
+/// rate is 0.99 it converges in a fraction of the steps plain Gauss–Newton takes (which stalls short of the
+/// tolerance) — and where Gauss–Newton is fast (rate 0.5) no inner solve crawls, so the two take the same
+/// steps.
+#[test]
+fn solve_structured_escalates_when_gauss_newton_crawls() {
+    use super::least_squares::solve_structured;
+    let solve = |lambda, escalate| {
+        let mut p = LargeResidual { lambda };
+        let o = match escalate {
+            true => AugLagLevenbergMarquardt.solve(&mut p, &[1.0], &tight(), &mut |_| {}),
+            false => solve_structured(&mut p, &[1.0], &tight(), &mut |_| {}, None),
+        };
+        assert!(o.x[0].abs() < 1e-6 || !o.converged, "λ = {lambda}: {}", summary(&o));
+        o
+    };
+    let (crawling, escalated) = (solve(0.99, false), solve(0.99, true));
+    assert_converged(&escalated, "rate 0.99, escalating");
+    assert!(
+        crawling.iterations > 3 * escalated.iterations,
+        "Gauss–Newton {} | escalating {}",
+        summary(&crawling),
+        summary(&escalated)
+    );
+    let (fast, same) = (solve(0.5, false), solve(0.5, true));
+    assert_converged(&fast, "rate 0.5, Gauss–Newton");
+    assert_eq!(fast.iterations, same.iterations, "{} | {}", summary(&fast), summary(&same));
+}
