@@ -339,6 +339,19 @@ impl Model {
         self.joints.len() - 1
     }
 
+    /// The DOFs torque `τ_i` can depend on, ascending: those on the root path of DOF `i`'s joint and in its
+    /// subtree (RNEA: `τ_i = S_iᵀ Σ_{b ∈ subtree(i)} f_b`, each `f_b` a function of the joints from the root
+    /// to `b`; loads at a body point add `J_bᵀ f` along the same path).
+    pub fn torque_dofs(&self, i: usize) -> Vec<usize> {
+        let descends = |mut j: usize, from: usize| {
+            while j > from {
+                j = self.joints[j].parent;
+            }
+            j == from
+        };
+        (0..self.nv()).filter(|&j| descends(j + 1, i + 1) || descends(i + 1, j + 1)).collect()
+    }
+
     /// The body `joints[i]` hangs from.
     #[inline]
     pub fn parent(&self, i: usize) -> usize {

@@ -51,7 +51,9 @@ impl SolverKind {
     /// The solver's name and what it is, for reports.
     pub fn name(&self) -> &'static str {
         match self {
-            SolverKind::Structured => "structured (augmented Lagrangian + Levenberg–Marquardt, banded; second-order when it crawls)",
+            SolverKind::Structured => {
+                "structured (augmented Lagrangian + Levenberg–Marquardt, banded; second-order when it crawls)"
+            }
             SolverKind::Newton => "newton (augmented Lagrangian + second-order trust region, banded)",
             SolverKind::AuglagBfgs => "auglag-bfgs (augmented Lagrangian + BFGS, the paper's method)",
         }

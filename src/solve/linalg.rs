@@ -142,6 +142,34 @@ impl SymmetricMatrix {
         }
     }
 
+    /// `A += w v vᵀ` for a vector `v` whose entries belong to the ascending columns `cols`, known to fit in
+    /// the band: a Jacobian row that skips columns (a torque row, supported on the joints of its chain).
+    pub(crate) fn add_outer_sorted(&mut self, cols: &[usize], w: f64, v: &[f64]) {
+        debug_assert!(cols.windows(2).all(|c| c[0] < c[1]) && cols.len() == v.len());
+        match &mut self.storage {
+            Storage::Banded { bandwidth, band } => {
+                // A[c_p][c_q] (q ≤ p) sits at band[c_p·(b+1) + b − c_p + c_q]: row c_p's origin plus c_q.
+                let b = *bandwidth;
+                for (p, (&cp, &vp)) in cols.iter().zip(v).enumerate() {
+                    let origin = cp * (b + 1) + b - cp;
+                    let wv = w * vp;
+                    for (&cq, &vq) in cols[..=p].iter().zip(&v[..=p]) {
+                        band[origin + cq] += wv * vq;
+                    }
+                }
+            }
+            Storage::Dense(m) => {
+                for (q, (&cq, &vq)) in cols.iter().zip(v).enumerate() {
+                    let mut column = m.column_mut(cq);
+                    let wv = w * vq;
+                    for (&cp, &vp) in cols[q..].iter().zip(&v[q..]) {
+                        column[cp] += wv * vp;
+                    }
+                }
+            }
+        }
+    }
+
     /// `A += B`, `B` of the same size and storage.
     ///
     /// # Panics

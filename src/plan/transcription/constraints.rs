@@ -132,8 +132,9 @@ impl Transcription<'_> {
                     out.g[gi] = sign * w.tau[i] - bound.value;
                     if want_jac {
                         let vals = out.jg.row_values_mut(gi);
-                        Self::chain_rule(&self.layout, &basis, sign, w.torque_row(i, nv, nl), vals);
-                        Self::subtract_limit_slope(&self.layout, &basis, i, &bound, vals);
+                        let dofs = &self.torque_dofs[i];
+                        Self::chain_rule_on(&self.layout, &basis, sign, w.torque_row(i, nv, nl), Some(dofs), vals);
+                        Self::subtract_limit_slope(&self.layout, &basis, dofs, i, &bound, vals);
                     }
                 }
                 IneqRow::Push(c) | IneqRow::Friction(c, _) => {

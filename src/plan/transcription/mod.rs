@@ -92,6 +92,8 @@ pub struct Transcription<'s> {
     goals: goals::Goals,
     /// A free root's zero-force rows, at one node per span (empty for a figure held by the world).
     root: root::RootRows,
+    /// Per DOF `l`, the DOFs `τ_l` depends on ([`Model::torque_dofs`]): the support of its rows.
+    torque_dofs: Vec<Vec<usize>>,
 }
 
 impl<'s> Transcription<'s> {
@@ -271,6 +273,7 @@ impl<'s> Transcription<'s> {
             hess: hessian::HessianWork::new(nv, n_lambda),
             goals,
             root: root::RootRows::default(),
+            torque_dofs: (0..nv).map(|l| model.torque_dofs(l)).collect(),
         };
         t.terms = terms::TermWork::new(&t, 0);
         t
@@ -283,6 +286,19 @@ impl<'s> Transcription<'s> {
 
     fn n_nodes(&self) -> usize {
         self.nodes.t.len()
+    }
+
+    /// The pattern of a row at a node that depends on the DOFs `dofs` only: for each owned control point
+    /// (of `motion`, `nv` columns each) the columns of `dofs`, then all of `lambda`.
+    fn supported_columns(&self, motion: &[usize], lambda: &[usize], dofs: &[usize]) -> Vec<usize> {
+        let nv = self.layout.nv;
+        let owned = motion.chunks(nv).flat_map(|block| dofs.iter().map(|&i| block[i]));
+        owned.chain(lambda.iter().copied()).collect()
+    }
+
+    /// The DOFs node residual `l` depends on: those of `τ_l` when it is `f τ_l` (`None`, all, for `L⁻¹τ`).
+    fn residual_dofs(&self, l: usize) -> Option<&[usize]> {
+        matches!(self.spec.objective, Objective::Torque).then(|| &self.torque_dofs[l][..])
     }
 
     /// Columns touched at a node by the motion (joint values of the four active control points) and by

@@ -207,16 +207,36 @@ impl Transcription<'_> {
     /// Writes a row's values over the pattern `motion ++ lambda` from its derivatives with respect to the
     /// node's `q`, `q̇`, `q̈` (each `nv`) and `λ̃` (`n_lambda`), by the chain rule of eq. 33, scaled by `s`.
     pub(super) fn chain_rule(layout: &Layout, basis: &BasisAt, s: f64, d: Derivatives, out: &mut [f64]) {
+        Self::chain_rule_on(layout, basis, s, d, None, out);
+    }
+
+    /// [`Self::chain_rule`] for a row that depends on the DOFs `dofs` only (ascending; `None`: all), over
+    /// the pattern of [`Self::supported_columns`]: per owned control point the columns of `dofs`, then `λ̃`.
+    pub(super) fn chain_rule_on(
+        layout: &Layout,
+        basis: &BasisAt,
+        s: f64,
+        d: Derivatives,
+        dofs: Option<&[usize]>,
+        out: &mut [f64],
+    ) {
         let Derivatives { q: d_q, v: d_v, a: d_a, lambda: d_l } = d;
         let slots = layout.motion_slots(basis.first);
-        let nv = layout.nv;
-        let mut pos = slots.iter().flatten().max().map_or(0, |s| (s + 1) * nv);
+        let width = dofs.map_or(layout.nv, <[usize]>::len);
+        let mut pos = slots.iter().flatten().max().map_or(0, |s| (s + 1) * width);
         out[..pos].fill(0.0);
         for (a, slot) in slots.iter().enumerate() {
             let Some(slot) = slot else { continue };
             let (b, db, ddb) = (basis.b[a] * s, basis.db[a] * s, basis.ddb[a] * s);
-            for i in 0..nv {
-                out[slot * nv + i] += d_q[i] * b + d_v[i] * db + d_a[i] * ddb;
+            // ∂row/∂c_{j,i} = ∂row/∂qᵢ Bⱼ + ∂row/∂q̇ᵢ Ḃⱼ + ∂row/∂q̈ᵢ B̈ⱼ (eq. 33)
+            let row = &mut out[slot * width..(slot + 1) * width];
+            match dofs {
+                None => (0..width).for_each(|i| row[i] += d_q[i] * b + d_v[i] * db + d_a[i] * ddb),
+                Some(dofs) => {
+                    for (k, &i) in dofs.iter().enumerate() {
+                        row[k] += d_q[i] * b + d_v[i] * db + d_a[i] * ddb;
+                    }
+                }
             }
         }
         if let Some(d_l) = d_l {

@@ -25,8 +25,8 @@ impl Problem for Transcription<'_> {
         for basis in &self.nodes.basis {
             let (motion, lambda) = self.node_columns(basis);
             let both: Vec<usize> = motion.iter().chain(lambda.iter()).copied().collect();
-            for _ in 0..nv {
-                p.r.push(both.clone());
+            for l in 0..nv {
+                p.r.push(self.residual_dofs(l).map_or_else(|| both.clone(), |d| self.supported_columns(&motion, &lambda, d)));
             }
             for row in &self.ineq_rows {
                 p.g.push(match *row {
@@ -34,7 +34,10 @@ impl Problem for Transcription<'_> {
                         .filter(|&j| self.layout.owns(j))
                         .filter_map(|j| self.layout.joint_var(j, i))
                         .collect(),
-                    IneqRow::UpperTorque(_) | IneqRow::LowerTorque(_) | IneqRow::Balance(_) => both.clone(),
+                    IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) => {
+                        self.supported_columns(&motion, &lambda, &self.torque_dofs[i])
+                    }
+                    IneqRow::Balance(_) => both.clone(),
                     IneqRow::Push(c) | IneqRow::Friction(c, _) => self.contact_columns(basis, c),
                     IneqRow::Collision(_) => motion.clone(),
                 });
@@ -60,12 +63,13 @@ impl Problem for Transcription<'_> {
             self.eval_node(k, want_jac);
             let basis = self.nodes.basis[k];
             let sw = self.nodes.w[k].sqrt();
-            let w = &mut self.work;
+            let w = &self.work;
             // Objective residuals: √wₖ times the node's residual (√W τ, or L⁻¹τ).
             for l in 0..nv {
                 out.r[k * nv + l] = sw * w.res[l];
                 if want_jac {
-                    Self::chain_rule(&self.layout, &basis, sw, w.residual_row(l, nv, nl), out.jr.row_values_mut(k * nv + l));
+                    let (d, dofs) = (w.residual_row(l, nv, nl), self.residual_dofs(l));
+                    Self::chain_rule_on(&self.layout, &basis, sw, d, dofs, out.jr.row_values_mut(k * nv + l));
                 }
             }
             self.inequality_rows(k, want_jac, out);

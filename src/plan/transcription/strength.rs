@@ -55,12 +55,20 @@ impl Transcription<'_> {
         self.torque_limit(i, upper, q, qd).value
     }
 
-    /// `vals −= ∂S/∂qᵢ Bₐ + ∂S/∂q̇ᵢ Ḃₐ` over a torque row's motion columns (eq. 33 for `−S(qᵢ, q̇ᵢ)`).
-    pub(super) fn subtract_limit_slope(layout: &super::Layout, basis: &BasisAt, i: usize, s: &Sloped, vals: &mut [f64]) {
-        let nv = layout.nv;
+    /// `vals −= ∂S/∂qᵢ Bₐ + ∂S/∂q̇ᵢ Ḃₐ` over a torque row's motion columns (eq. 33 for `−S(qᵢ, q̇ᵢ)`), the row
+    /// supported on `dofs` (which hold `i`; see [`Transcription::chain_rule_on`]).
+    pub(super) fn subtract_limit_slope(
+        layout: &super::Layout,
+        basis: &BasisAt,
+        dofs: &[usize],
+        i: usize,
+        s: &Sloped,
+        vals: &mut [f64],
+    ) {
+        let at = dofs.binary_search(&i).expect("a torque row's support holds its own DOF");
         for (a, slot) in layout.motion_slots(basis.first).iter().enumerate() {
             if let Some(slot) = slot {
-                vals[slot * nv + i] -= s.d1 * basis.b[a] + s.d2 * basis.db[a];
+                vals[slot * dofs.len() + at] -= s.d1 * basis.b[a] + s.d2 * basis.db[a];
             }
         }
     }
