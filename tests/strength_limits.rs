@@ -64,6 +64,25 @@ fn surface_slopes_match_differences() {
     assert!((normal_quantile(0.25) + 0.674_49).abs() < 1e-4 && (normal_cdf(normal_quantile(0.9)) - 0.9).abs() < 1e-9);
 }
 
+/// The corners the dense check samples (`Surface::corners`) are where the floored factors meet their floor:
+/// the surface is 0.1 × the other factor there and above it just inside; hip extension's speed is 5.84 rad/s.
+#[test]
+fn surface_corners_are_where_the_factors_meet_their_floor() {
+    for s in ANDERSON_2007_MEN_18_25.iter().flatten() {
+        let (thetas, omega) = s.corners();
+        let peak = s.c[2]; // the angle factor is 1 at θ = C₃
+        for theta in thetas {
+            assert!((s.shape(theta, 0.0) - 0.1).abs() < 1e-12, "{s:?} at θ = {theta}");
+            assert!(s.shape(theta + 0.01 * (peak - theta).signum(), 0.0) > 0.1);
+        }
+        if let Some(w) = omega {
+            assert!((s.shape(peak, w) - 0.1).abs() < 1e-12 && s.shape(peak, 0.99 * w) > 0.1, "{s:?} at ω = {w}");
+        }
+    }
+    let hip_extension = ANDERSON_2007_MEN_18_25[0][0].corners().1.expect("hip extension meets its floor");
+    assert!((hip_extension - 5.84).abs() < 0.01, "{hip_extension}");
+}
+
 #[test]
 fn strength_rows_and_residuals_match_finite_differences() {
     let task = task(RISE);
@@ -141,8 +160,9 @@ fn worst_share(samples: &[mintorque::plan::NodeValues], strengths: &mintorque::m
 /// With the model's constant effort limits the fast lift asks the hips for several times their strength
 /// at the speed they extend (the constant limit does not fall with speed); bounded by strength, the same
 /// lift (the shipped example, as it is) keeps within it at every one of the 1001 samples — for a little more
-/// effort. The example's dense check runs at 64 times per span: at the default 16 it missed a 2.2 % excess
-/// at the hip (0.622 s, where the hip's speed passes through 0 and the surface turns within ~0.05 rad/s).
+/// effort. At the default 16 times per span the evenly spaced check alone missed a 2.2 % excess at the hip
+/// (0.622 s, extending at 5.8 rad/s, where the velocity factor meets its floor); it now also checks the
+/// strength rows where a joint crosses a corner of its surface (`between::strength_turns`).
 #[test]
 fn a_lift_bounded_by_strength_keeps_within_it_where_constant_limits_exceed_it() {
     let example = fast_lift();
