@@ -246,7 +246,9 @@ pub fn check(spec: &Spec, x: &[f64], per_span: usize, tolerances: &Tolerances) -
 /// speed met the velocity factor's floor, 5.8 rad/s). None without strength limits.
 fn strength_turns(spec: &Spec, x: &[f64], times: &[f64]) -> Result<Vec<f64>> {
     let Some(strength) = &spec.strength else { return Ok(vec![]) };
-    let joints: Vec<(usize, (Vec<f64>, Vec<f64>))> = (0..spec.model.nv())
+    // (joint, its corner angles, its corner speeds)
+    type Corners = (usize, (Vec<f64>, Vec<f64>));
+    let joints: Vec<Corners> = (0..spec.model.nv())
         .filter(|&i| strength.varies(i))
         .map(|i| (i, strength.sources[i].corner_levels(PLANNER_SMOOTHING)))
         .collect();
