@@ -64,6 +64,25 @@ fn surface_slopes_match_differences() {
     assert!((normal_quantile(0.25) + 0.674_49).abs() < 1e-4 && (normal_cdf(normal_quantile(0.9)) - 0.9).abs() < 1e-9);
 }
 
+/// The corners the dense check samples (`Surface::corners`) are where the floored factors meet their floor:
+/// the surface is 0.1 × the other factor there and above it just inside; hip extension's speed is 5.84 rad/s.
+#[test]
+fn surface_corners_are_where_the_factors_meet_their_floor() {
+    for s in ANDERSON_2007_MEN_18_25.iter().flatten() {
+        let (thetas, omega) = s.corners();
+        let peak = s.c[2]; // the angle factor is 1 at θ = C₃
+        for theta in thetas {
+            assert!((s.shape(theta, 0.0) - 0.1).abs() < 1e-12, "{s:?} at θ = {theta}");
+            assert!(s.shape(theta + 0.01 * (peak - theta).signum(), 0.0) > 0.1);
+        }
+        if let Some(w) = omega {
+            assert!((s.shape(peak, w) - 0.1).abs() < 1e-12 && s.shape(peak, 0.99 * w) > 0.1, "{s:?} at ω = {w}");
+        }
+    }
+    let hip_extension = ANDERSON_2007_MEN_18_25[0][0].corners().1.expect("hip extension meets its floor");
+    assert!((hip_extension - 5.84).abs() < 0.01, "{hip_extension}");
+}
+
 #[test]
 fn strength_rows_and_residuals_match_finite_differences() {
     let task = task(RISE);
@@ -97,19 +116,25 @@ fn jacobian_at(spec: &mintorque::plan::Spec, seed: u64) -> Evaluation {
     eval
 }
 
-/// A fast squat lift of 25 kg by the sagittal human (1 s, no balance constraint) with `more` appended:
-/// the planned task and the dense samples (1000 per second) of its plan.
+/// `examples/fast_lift_strength.toml`: a fast squat lift of 25 kg by the sagittal human (1 s, no balance
+/// constraint), strength-limited.
+fn fast_lift() -> String {
+    std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/fast_lift_strength.toml")).unwrap()
+}
+
+/// The fast lift with its `[constraints]` and `[constraints.between_nodes]` replaced by `more`.
 fn lift(more: &str) -> (Task, Vec<mintorque::plan::NodeValues>) {
-    let text = format!(
-        "[model]\nhuman = \"sagittal\"\nstature = 1.75\nmass = 75.0\n\n[motion]\nduration = 1.0\n\
-         start = {{ ankle = 18.0, knee = 75.0, hip = 100.0, lumbar = 20.0, shoulder = 80.0 }}\n\
-         goal = {{ shoulder = 10.0, elbow = 80.0 }}\nstart_condition = \"hold\"\ngoal_condition = \"hold\"\n\n\
-         [[environment.payload]]\nframe = \"hands\"\nmass = 25.0\n\n{more}"
-    );
-    let mut task = task(&text);
+    let text = fast_lift();
+    let base = &text[..text.find("[constraints]").expect("the example has constraints")];
+    plan_lift(&format!("{base}{more}"))
+}
+
+/// The task `text` planned (converged) and the dense samples (1000 per second) of its plan.
+fn plan_lift(text: &str) -> (Task, Vec<mintorque::plan::NodeValues>) {
+    let mut task = task(text);
     task.multistart.starts = 1;
     let plan = task.plan(&mut |_| {}).unwrap();
-    assert!(plan.converged(), "{more}: {}", plan.outcome.reason);
+    assert!(plan.converged(), "{text}: {}", plan.outcome.reason);
     let times: Vec<f64> = (0..=1000).map(|k| k as f64 / 1000.0).collect();
     let samples = mintorque::plan::sample(&task.spec, &plan, &times).unwrap();
     (task, samples)
@@ -134,14 +159,16 @@ fn worst_share(samples: &[mintorque::plan::NodeValues], strengths: &mintorque::m
 
 /// With the model's constant effort limits the fast lift asks the hips for several times their strength
 /// at the speed they extend (the constant limit does not fall with speed); bounded by strength, the same
-/// lift keeps within it at every one of the 1001 samples — for a little more effort. The dense check runs
-/// at 64 times per span here: at the default 16 it missed a 2.2 % excess at the hip (0.622 s, where the
-/// hip's speed passes through 0 and the surface turns within ~0.05 rad/s) with the escalating solver.
+/// lift (the shipped example, as it is) keeps within it at every one of the 1001 samples — for a little more
+/// effort. At the default 16 times per span the evenly spaced check alone missed a 2.2 % excess at the hip
+/// (0.622 s, extending at 5.8 rad/s, where the velocity factor meets its floor); it now also checks the
+/// strength rows where a joint crosses a corner of its surface (`between::strength_turns`).
 #[test]
 fn a_lift_bounded_by_strength_keeps_within_it_where_constant_limits_exceed_it() {
-    let (bounded, within) = lift("[constraints]\nstrength_limits = true\n[constraints.between_nodes]\nper_span = 64\n");
+    let example = fast_lift();
+    let (bounded, within) = plan_lift(&example);
     let strengths = bounded.spec.strength.clone().expect("strength limits on");
-    let (_, constant) = lift("");
+    let (_, constant) = plan_lift(&example.replace("strength_limits = true", "strength_limits = false"));
     let (over, t_over, i_over) = worst_share(&constant, &strengths);
     let (inside, t_in, i_in) = worst_share(&within, &strengths);
     let name = |i: usize| bounded.spec.model.joints[i + 1].name.clone();

@@ -106,6 +106,18 @@ impl Surface {
         Sloped { value: a * v, d1: da * v, d2: a * dv }
     }
 
+    /// Where the floored factors have corners: the angles at which the angle factor meets its floor,
+    /// `cos(C₂(θ − C₃)) = F`: θ = C₃ ± acos(F)/C₂ (rad), and the concentric speed at which the velocity
+    /// factor meets it, `v(ω) = F`: ω = 2C₄C₅(1 − F) / (F(2C₅ − 4C₄) − (C₅ − 3C₄)) (rad/s; none where
+    /// `v` stays above F), F = 0.1.
+    pub fn corners(&self) -> ([f64; 2], Option<f64>) {
+        let [_, c2, c3, c4, c5] = self.c;
+        let half = FACTOR_FLOOR.acos() / c2;
+        let den = FACTOR_FLOOR * (2.0 * c5 - 4.0 * c4) - (c5 - 3.0 * c4);
+        let omega = 2.0 * c4 * c5 * (1.0 - FACTOR_FLOOR) / den;
+        ([c3 - half, c3 + half], (omega > 0.0).then_some(omega))
+    }
+
     /// `σ/T`: Anderson's coefficient of variation of C₁.
     pub fn cv(&self) -> f64 {
         self.c1_sd / self.c[0]
@@ -175,6 +187,23 @@ impl Source {
             let f = 1.0 + z * cv;
             Sloped { value: f * m.value, d1: f * m.d1, d2: f * m.d2 }
         })
+    }
+
+    /// The joint angles `q` (rad) and velocities `q̇` (rad/s) where its strength has a corner or turns
+    /// fast: the angle and velocity factors' floors ([`Surface::corners`], both directions) and, about a
+    /// reversal, `q̇ = 0, ±½ε, ±ε, ±2ε` (`smoothing` ε, where the velocity factor meets the eccentric
+    /// branch). None for a constant strength.
+    pub fn corner_levels(&self, smoothing: f64) -> (Vec<f64>, Vec<f64>) {
+        let Source::Anderson { joint, flexion_sign: s, .. } = self else { return (vec![], vec![]) };
+        let mut speeds: Vec<f64> = [0.0, 0.5, -0.5, 1.0, -1.0, 2.0, -2.0].iter().map(|k| k * smoothing).collect();
+        let mut angles = Vec::new();
+        for surface in &ANDERSON_2007_MEN_18_25[*joint] {
+            let (thetas, omega) = surface.corners();
+            // θ = s q, ω = ±s q̇
+            angles.extend(thetas.map(|theta| s * theta));
+            speeds.extend(omega.into_iter().flat_map(|w| [w, -w]));
+        }
+        (angles, speeds)
     }
 
     /// Its description.
