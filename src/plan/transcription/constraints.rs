@@ -133,7 +133,7 @@ impl Transcription<'_> {
                     if want_jac {
                         let vals = out.jg.row_values_mut(gi);
                         let dofs = &self.torque_dofs[i];
-                        Self::chain_rule_on(&self.layout, &basis, sign, w.torque_row(i, nv, nl), Some(dofs), vals);
+                        Self::chain_rule_on(&self.layout, &basis, sign, w.torque_row(i, nv, nl), dofs, vals);
                         Self::subtract_limit_slope(&self.layout, &basis, dofs, i, &bound, vals);
                     }
                 }

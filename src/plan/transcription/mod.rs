@@ -288,12 +288,18 @@ impl<'s> Transcription<'s> {
         self.nodes.t.len()
     }
 
-    /// The pattern of a row at a node that depends on the DOFs `dofs` only: for each owned control point
-    /// (of `motion`, `nv` columns each) the columns of `dofs`, then all of `lambda`.
-    fn supported_columns(&self, motion: &[usize], lambda: &[usize], dofs: &[usize]) -> Vec<usize> {
-        let nv = self.layout.nv;
-        let owned = motion.chunks(nv).flat_map(|block| dofs.iter().map(|&i| block[i]));
-        owned.chain(lambda.iter().copied()).collect()
+    /// The pattern of a row at the node `basis` that depends on the DOFs `dofs` only, ascending: per control
+    /// point its own columns of `dofs` (if it owns any), then its contact forces.
+    fn supported_columns(&self, basis: &BasisAt, dofs: &[usize]) -> Vec<usize> {
+        let l = &self.layout;
+        let mut columns = Vec::new();
+        for j in basis.first..basis.first + 4 {
+            if l.owns(j) {
+                columns.extend(dofs.iter().filter_map(|&i| l.joint_var(j, i)));
+            }
+            columns.extend((0..l.n_lambda).map(|m| l.lambda_var(j, m)));
+        }
+        columns
     }
 
     /// The DOFs node residual `l` depends on: those of `τ_l` when it is `f τ_l` (`None`, all, for `L⁻¹τ`).

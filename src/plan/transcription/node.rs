@@ -207,36 +207,16 @@ impl Transcription<'_> {
     /// Writes a row's values over the pattern `motion ++ lambda` from its derivatives with respect to the
     /// node's `q`, `q̇`, `q̈` (each `nv`) and `λ̃` (`n_lambda`), by the chain rule of eq. 33, scaled by `s`.
     pub(super) fn chain_rule(layout: &Layout, basis: &BasisAt, s: f64, d: Derivatives, out: &mut [f64]) {
-        Self::chain_rule_on(layout, basis, s, d, None, out);
-    }
-
-    /// [`Self::chain_rule`] for a row that depends on the DOFs `dofs` only (ascending; `None`: all), over
-    /// the pattern of [`Self::supported_columns`]: per owned control point the columns of `dofs`, then `λ̃`.
-    pub(super) fn chain_rule_on(
-        layout: &Layout,
-        basis: &BasisAt,
-        s: f64,
-        d: Derivatives,
-        dofs: Option<&[usize]>,
-        out: &mut [f64],
-    ) {
         let Derivatives { q: d_q, v: d_v, a: d_a, lambda: d_l } = d;
         let slots = layout.motion_slots(basis.first);
-        let width = dofs.map_or(layout.nv, <[usize]>::len);
-        let mut pos = slots.iter().flatten().max().map_or(0, |s| (s + 1) * width);
+        let nv = layout.nv;
+        let mut pos = slots.iter().flatten().max().map_or(0, |s| (s + 1) * nv);
         out[..pos].fill(0.0);
         for (a, slot) in slots.iter().enumerate() {
             let Some(slot) = slot else { continue };
             let (b, db, ddb) = (basis.b[a] * s, basis.db[a] * s, basis.ddb[a] * s);
-            // ∂row/∂c_{j,i} = ∂row/∂qᵢ Bⱼ + ∂row/∂q̇ᵢ Ḃⱼ + ∂row/∂q̈ᵢ B̈ⱼ (eq. 33)
-            let row = &mut out[slot * width..(slot + 1) * width];
-            match dofs {
-                None => (0..width).for_each(|i| row[i] += d_q[i] * b + d_v[i] * db + d_a[i] * ddb),
-                Some(dofs) => {
-                    for (k, &i) in dofs.iter().enumerate() {
-                        row[k] += d_q[i] * b + d_v[i] * db + d_a[i] * ddb;
-                    }
-                }
+            for i in 0..nv {
+                out[slot * nv + i] += d_q[i] * b + d_v[i] * db + d_a[i] * ddb;
             }
         }
         if let Some(d_l) = d_l {
@@ -249,4 +229,47 @@ impl Transcription<'_> {
             }
         }
     }
+
+    /// [`Self::chain_rule`] for a row that depends on the DOFs `dofs` only (ascending), over the pattern of
+    /// [`Self::supported_columns`] (see [`supported_offsets`]).
+    pub(super) fn chain_rule_on(layout: &Layout, basis: &BasisAt, s: f64, d: Derivatives, dofs: &[usize], out: &mut [f64]) {
+        let Derivatives { q: d_q, v: d_v, a: d_a, lambda: d_l } = d;
+        let (motion_at, lambda_at) = supported_offsets(layout, basis.first, dofs.len());
+        out.fill(0.0);
+        for a in 0..4 {
+            let (b, db, ddb) = (basis.b[a] * s, basis.db[a] * s, basis.ddb[a] * s);
+            if let Some(at) = motion_at[a] {
+                // ∂row/∂c_{j,i} += ∂row/∂qᵢ Bⱼ + ∂row/∂q̇ᵢ Ḃⱼ + ∂row/∂q̈ᵢ B̈ⱼ (eq. 33; a shared point adds to its owner's)
+                for (k, &i) in dofs.iter().enumerate() {
+                    out[at + k] += d_q[i] * b + d_v[i] * db + d_a[i] * ddb;
+                }
+            }
+            if let Some(d_l) = d_l {
+                // ∂row/∂λ̃_{j,m} = ∂row/∂λ̃_m Bⱼ · scale
+                for (m, d) in d_l.iter().enumerate() {
+                    out[lambda_at[a] + m] = d * b * layout.lambda_scale;
+                }
+            }
+        }
+    }
+}
+
+/// Where a row supported on `width` DOFs (see [`Transcription::supported_columns`]) holds, for each of the
+/// four control points from `first`, its motion block (a shared point's is its owner's; `None` if fixed)
+/// and its contact forces. In column order: per control point its own motion block if it owns one, then its
+/// `n_lambda` forces.
+pub(super) fn supported_offsets(layout: &Layout, first: usize, width: usize) -> ([Option<usize>; 4], [usize; 4]) {
+    let (mut motion, mut lambda, mut pos) = ([None; 4], [0; 4], 0);
+    for a in 0..4 {
+        let j = first + a;
+        if layout.owns(j) {
+            motion[a] = Some(pos);
+            pos += width;
+        } else if !layout.fixed[j] {
+            motion[a] = motion[layout.owner[j] - first]; // the owner precedes it in the same window
+        }
+        lambda[a] = pos;
+        pos += layout.n_lambda;
+    }
+    (motion, lambda)
 }

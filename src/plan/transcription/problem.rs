@@ -26,7 +26,7 @@ impl Problem for Transcription<'_> {
             let (motion, lambda) = self.node_columns(basis);
             let both: Vec<usize> = motion.iter().chain(lambda.iter()).copied().collect();
             for l in 0..nv {
-                p.r.push(self.residual_dofs(l).map_or_else(|| both.clone(), |d| self.supported_columns(&motion, &lambda, d)));
+                p.r.push(self.residual_dofs(l).map_or_else(|| both.clone(), |d| self.supported_columns(basis, d)));
             }
             for row in &self.ineq_rows {
                 p.g.push(match *row {
@@ -34,9 +34,7 @@ impl Problem for Transcription<'_> {
                         .filter(|&j| self.layout.owns(j))
                         .filter_map(|j| self.layout.joint_var(j, i))
                         .collect(),
-                    IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) => {
-                        self.supported_columns(&motion, &lambda, &self.torque_dofs[i])
-                    }
+                    IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) => self.supported_columns(basis, &self.torque_dofs[i]),
                     IneqRow::Balance(_) => both.clone(),
                     IneqRow::Push(c) | IneqRow::Friction(c, _) => self.contact_columns(basis, c),
                     IneqRow::Collision(_) => motion.clone(),
@@ -68,8 +66,11 @@ impl Problem for Transcription<'_> {
             for l in 0..nv {
                 out.r[k * nv + l] = sw * w.res[l];
                 if want_jac {
-                    let (d, dofs) = (w.residual_row(l, nv, nl), self.residual_dofs(l));
-                    Self::chain_rule_on(&self.layout, &basis, sw, d, dofs, out.jr.row_values_mut(k * nv + l));
+                    let (d, row) = (w.residual_row(l, nv, nl), out.jr.row_values_mut(k * nv + l));
+                    match self.residual_dofs(l) {
+                        Some(dofs) => Self::chain_rule_on(&self.layout, &basis, sw, d, dofs, row),
+                        None => Self::chain_rule(&self.layout, &basis, sw, d, row),
+                    }
                 }
             }
             self.inequality_rows(k, want_jac, out);

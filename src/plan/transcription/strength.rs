@@ -66,9 +66,10 @@ impl Transcription<'_> {
         vals: &mut [f64],
     ) {
         let at = dofs.binary_search(&i).expect("a torque row's support holds its own DOF");
-        for (a, slot) in layout.motion_slots(basis.first).iter().enumerate() {
-            if let Some(slot) = slot {
-                vals[slot * dofs.len() + at] -= s.d1 * basis.b[a] + s.d2 * basis.db[a];
+        let (motion_at, _) = super::node::supported_offsets(layout, basis.first, dofs.len());
+        for (a, offset) in motion_at.iter().enumerate() {
+            if let Some(offset) = offset {
+                vals[offset + at] -= s.d1 * basis.b[a] + s.d2 * basis.db[a];
             }
         }
     }
