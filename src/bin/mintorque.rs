@@ -151,7 +151,7 @@ enum Command {
     /// Inverse dynamics of a recorded motion (OpenSim .mot/.sto, CSV or BVH; docs/interop.md): resampled,
     /// low-pass filtered, differentiated by splines; torques as OpenSim's .sto and CSV, plots, ergonomics.
     Inverse {
-        /// A URDF, MJCF, figure file or (uncoupled) OpenSim model.
+        /// A URDF, MJCF, figure file or OpenSim model (a coupled one's forces are its coordinates').
         model: PathBuf,
         /// The motion: .mot/.sto (time and one column per joint; inDegrees as the header says), .csv
         /// (time and one column per joint, degrees or metres; `NAME.q_rad` for radians) or .bvh (joints
@@ -169,6 +169,10 @@ enum Command {
         /// Resample to this even rate (Hz; default: the file's mean rate).
         #[arg(long)]
         rate: Option<f64>,
+        /// How q̇, q̈ are obtained: `interpolating` (the Butterworth filter, then a not-a-knot cubic through
+        /// the samples) or `smoothing` (one quintic smoothing spline whose smoothing is the cutoff's).
+        #[arg(long, value_enum, default_value_t = SplineArg::Interpolating)]
+        spline: SplineArg,
         /// External loads on the figure over time: CSV (time_s, FRAME.fx_N … FRAME.mz_Nm; world axes) or
         /// OpenSim's ExternalLoads .xml with its datafile.
         #[arg(long)]
@@ -211,6 +215,12 @@ struct ModelArgs {
     /// independent degree of freedom (the coupling dropped).
     #[arg(long, value_enum, default_value_t = MimicArg::Refuse)]
     mimic: MimicArg,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum SplineArg {
+    Interpolating,
+    Smoothing,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -259,6 +269,19 @@ fn load_model(path: &Path, read: ModelArgs) -> Result<mintorque::Model> {
         }
         _ => e.into(),
     })
+}
+
+/// The model of `mintorque inverse`: a coupled `.osim` keeps its coordinates (its forces are theirs),
+/// any other model file is read as every command reads it.
+fn inverse_subject(path: &Path, read: ModelArgs) -> Result<inverse::Subject> {
+    if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("osim")) {
+        let osim = mintorque::model::osim::load(path)?;
+        if osim.coordinates.is_coupled() {
+            osim.ignored.iter().for_each(|note| eprintln!("note: {}: ignored {note}", path.display()));
+            return Ok(inverse::Subject::Coupled(Box::new(osim)));
+        }
+    }
+    load_model(path, read).map(inverse::Subject::Joints)
 }
 
 /// Plans a task (overrides applied, settings checked), reporting why it did not converge if it did not.
@@ -439,11 +462,16 @@ fn run(cli: Cli) -> Result<ExitCode> {
             Ok(ExitCode::SUCCESS)
         }
         Command::Simulate { plan: path, steps } => Ok(exit(run_simulate(&path, steps)?)),
-        Command::Inverse { model, motion, out, filter_hz, no_filter, rate, loads, units, quiet, no_plots, read } => {
-            let model = load_model(&model, read)?;
+        Command::Inverse { model, motion, out, filter_hz, no_filter, rate, spline, loads, units, quiet, no_plots, read } => {
+            let subject = inverse_subject(&model, read)?;
             let (loads, units) = (loads.as_deref(), units.as_deref());
-            let args = inverse::Args { motion: &motion, out: &out, filter_hz, no_filter, rate, loads, units, quiet, no_plots };
-            inverse::run(&model, &args).map(|()| ExitCode::SUCCESS)
+            let spline = match spline {
+                SplineArg::Interpolating => mintorque::inverse::Spline::Interpolating,
+                SplineArg::Smoothing => mintorque::inverse::Spline::Smoothing,
+            };
+            let settings = mintorque::inverse::Settings { filter_hz: (!no_filter).then_some(filter_hz), rate_hz: rate, spline };
+            let args = inverse::Args { motion: &motion, out: &out, settings, loads, units, quiet, no_plots };
+            inverse::run(&subject, &args).map(|()| ExitCode::SUCCESS)
         }
         Command::Dynamics { model, states, gravity, bench, read } => {
             run_dynamics(&model, read, states, gravity, bench).map(|()| ExitCode::SUCCESS)

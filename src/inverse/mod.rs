@@ -9,13 +9,15 @@ pub mod butterworth;
 pub mod bvh;
 pub mod bvh_file;
 pub mod chain_angles;
+pub mod coupled;
 pub mod driver;
 pub mod external_loads;
 pub mod files;
 pub mod loads;
 pub mod motion;
+pub mod smoothing;
 pub mod spline;
 pub mod table;
 
-pub use driver::{inverse_dynamics, Inverse, Settings, DEFAULT_FILTER_HZ};
+pub use driver::{inverse_dynamics, Inverse, Settings, Spline, DEFAULT_FILTER_HZ};
 pub use motion::Motion;
