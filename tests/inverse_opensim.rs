@@ -143,7 +143,9 @@ fn inverse_dynamics_of_a_motion_matches_opensims_tool() {
         .collect();
 
     let theirs = forces(&run_opensim(&model_path, &motion_path, &dir, -1.0), &labels);
-    let ours = forces(&run_ours(&model_path, &motion_path, &dir.join("ours"), &["--no-filter"]), &labels);
+    let ours =
+        forces(&run_ours(&model_path, &motion_path, &dir.join("ours"), &["--no-filter", "--spline", "interpolating"]), &labels);
+    let smoothing = forces(&run_ours(&model_path, &motion_path, &dir.join("smooth"), &["--no-filter"]), &labels);
     let skip = 10; // 50 ms at each end, where both splines' end conditions act
     let (vs_opensim, vs_opensim_all) = (relative_error(&ours, &theirs, skip), relative_error(&ours, &theirs, 0));
     let (ours_exact, theirs_exact) = (relative_error(&ours, &exact, 0), relative_error(&theirs, &exact, 0));
@@ -152,6 +154,13 @@ fn inverse_dynamics_of_a_motion_matches_opensims_tool() {
         "unfiltered: ours vs OpenSim {vs_opensim:.2e} (inner samples), {vs_opensim_all:.2e} (all samples); vs the exact forces: \
          ours {ours_inner:.2e} inner, {ours_exact:.2e} all; OpenSim {theirs_inner:.2e} inner, {theirs_exact:.2e} all"
     );
+    // The default quintic smoothing spline (at the Nyquist frequency) against OpenSim's quintic spline.
+    let (s_opensim, s_opensim_all) = (relative_error(&smoothing, &theirs, skip), relative_error(&smoothing, &theirs, 0));
+    let (s_inner, s_all) = (relative_error(&smoothing, &exact, skip), relative_error(&smoothing, &exact, 0));
+    eprintln!(
+        "unfiltered, the smoothing spline: vs OpenSim {s_opensim:.2e} (inner), {s_opensim_all:.2e} (all); vs the exact forces {s_inner:.2e} (inner), {s_all:.2e} (all)"
+    );
+    assert!(s_opensim < 1e-3 && s_inner < 1e-3, "{s_opensim:e} {s_inner:e}");
     assert!(vs_opensim < 1e-3, "ours and OpenSim's differ by {vs_opensim:e}");
     assert!(ours_exact < 3e-3, "ours differ from the exact forces by {ours_exact:e}");
     // At the ends OpenSim's natural quintic spline bends q̈ away; the not-a-knot cubic does not.
@@ -164,13 +173,19 @@ fn inverse_dynamics_of_a_motion_matches_opensims_tool() {
     // unfiltered.
     let theirs_6 = forces(&run_opensim(&model_path, &motion_path, &dir.join("osim6"), 6.0), &labels);
     let ours_6 = forces(&run_ours(&model_path, &motion_path, &dir.join("ours6"), &["--filter-hz", "6"]), &labels);
+    let cubic_6 = forces(
+        &run_ours(&model_path, &motion_path, &dir.join("cubic6"), &["--filter-hz", "6", "--spline", "interpolating"]),
+        &labels,
+    );
     let middle = (0.4 * RATE_HZ) as usize; // 0.4 s = 2.4/f_c from each end
     let (f_ours, f_theirs) = (relative_error(&ours_6, &exact, middle), relative_error(&theirs_6, &exact, middle));
     let (f_ours_ends, f_theirs_ends) = (relative_error(&ours_6, &exact, 0), relative_error(&theirs_6, &exact, 0));
+    let (f_cubic, f_cubic_ends) = (relative_error(&cubic_6, &exact, middle), relative_error(&cubic_6, &exact, 0));
     eprintln!(
-        "filtered at 6 Hz, vs the exact forces: ours {f_ours:.2e} (0.4 s from the ends), {f_ours_ends:.2e} (all); \
-         OpenSim {f_theirs:.2e}, {f_theirs_ends:.2e}"
+        "filtered at 6 Hz, vs the exact forces: ours (smoothing spline) {f_ours:.2e} (0.4 s from the ends), {f_ours_ends:.2e} (all); \
+         ours (Butterworth, cubic) {f_cubic:.2e}, {f_cubic_ends:.2e}; OpenSim {f_theirs:.2e}, {f_theirs_ends:.2e}"
     );
+    assert!(f_cubic < 3e-3, "the Butterworth at 6 Hz changes the forces by {f_cubic:e} away from the ends");
     assert!(f_ours < 3e-3, "our 6 Hz filter changes the forces of a 1.45 Hz motion by {f_ours:e} away from the ends");
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -169,9 +169,10 @@ enum Command {
         /// Resample to this even rate (Hz; default: the file's mean rate).
         #[arg(long)]
         rate: Option<f64>,
-        /// How q̇, q̈ are obtained: `interpolating` (the Butterworth filter, then a not-a-knot cubic through
-        /// the samples) or `smoothing` (one quintic smoothing spline whose smoothing is the cutoff's).
-        #[arg(long, value_enum, default_value_t = SplineArg::Interpolating)]
+        /// How q̇, q̈ are obtained: `smoothing` (one quintic smoothing spline, −3 dB at the cutoff: filter and
+        /// derivatives at once) or `interpolating` (the Butterworth filter, then a not-a-knot cubic through
+        /// the filtered samples).
+        #[arg(long, value_enum, default_value_t = SplineArg::Smoothing)]
         spline: SplineArg,
         /// External loads on the figure over time: CSV (time_s, FRAME.fx_N … FRAME.mz_Nm; world axes) or
         /// OpenSim's ExternalLoads .xml with its datafile.

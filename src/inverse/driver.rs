@@ -35,10 +35,12 @@ pub struct Settings {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Spline {
     /// The zero-lag Butterworth filter, then the not-a-knot cubic spline through the filtered samples.
-    #[default]
     Interpolating,
     /// One quintic smoothing spline whose smoothing parameter is the cutoff's ([`super::smoothing`]):
-    /// filter and derivatives at once; interpolating (λ = 0) without a filter.
+    /// filter and derivatives at once; without a filter, the smoothing of the Nyquist frequency. The
+    /// default: at a cutoff its accelerations are closer to the truth than the Butterworth's, inside and
+    /// at the ends (`docs/interop.md`).
+    #[default]
     Smoothing,
 }
 
