@@ -108,3 +108,27 @@ fn on_exact_samples_the_smoothing_splines_acceleration_converges_as_h4() {
         assert!(ratio > 12.0, "the inner error fell only ×{ratio:.1} as h halved");
     }
 }
+
+/// Far below the Nyquist frequency (knots every k samples, `src/inverse/smoothing.rs`) the spline keeps
+/// its gain and does not depend on the rate: 1000 and 10000 Hz samples of one motion at a 1 Hz cutoff give
+/// the same `q̈` (0.5 s from the ends). With knots at every sample these normal equations are singular (not positive definite
+/// at 10 kHz and 1 Hz, measured before the coarser knots).
+#[test]
+fn at_high_rates_and_low_cutoffs_the_spline_keeps_its_gain_and_does_not_depend_on_the_rate() {
+    for rate in [1000.0, 10000.0] {
+        let g = gain(6.0, 6.0, rate);
+        assert!((g - 0.5f64.sqrt()).abs() < 0.01, "gain {g} at {rate} Hz");
+    }
+    let qdd_at = |rate: f64| -> Vec<f64> {
+        let t = times(4.0, rate);
+        let y: Vec<f64> = t.iter().map(|&x| motion(x).0).collect();
+        let smoother = Smoother::new(&t, Some(1.0)).expect("well-conditioned");
+        let spline = smoother.fit(&y).expect("fit");
+        (5..=35).map(|k| spline.eval(0.1 * k as f64).2).collect()
+    };
+    let (slow, fast) = (qdd_at(1000.0), qdd_at(10000.0));
+    let peak = slow.iter().fold(0.0f64, |m, a| m.max(a.abs()));
+    let worst = slow.iter().zip(&fast).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+    eprintln!("1 Hz cutoff: q̈ at 1000 and 10000 Hz differ by {worst:.2e} of a {peak:.2} rad/s² peak");
+    assert!(peak > 1.0 && worst < 1e-3 * peak, "{worst} of {peak}");
+}

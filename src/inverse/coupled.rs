@@ -84,7 +84,7 @@ pub fn check_coupled_ranges(motion: &Motion, osim: &Osim) -> Result<()> {
     for (k, coordinate) in c.coordinates.iter().enumerate() {
         let drives_coupling = c.chain.iter().any(|d| d.coordinate == k && !d.function.is_identity());
         let (lo, hi) = coordinate.range;
-        if !drives_coupling || !c.is_rotational(&osim.model, k) || !(lo.is_finite() && hi.is_finite()) {
+        if !(drives_coupling && c.is_rotational(&osim.model, k) && lo.is_finite() && hi.is_finite()) {
             continue;
         }
         let outside =

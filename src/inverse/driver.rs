@@ -1,8 +1,10 @@
 //! Inverse dynamics of a recorded motion, the steps of OpenSim's inverse dynamics tool: resample the
-//! motion to an even rate (through a not-a-knot cubic spline of the samples), low-pass filter it (zero-lag
-//! Butterworth, default 6 Hz), differentiate it (a second such spline through the filtered samples gives
-//! `q̇` and `q̈`), then `τ = RNEA(q, q̇, q̈) − Σ Jᵀ F_ext` at every sample under the model's gravity and the
-//! external loads of a file ([`super::loads`]), if any.
+//! motion to an even rate (through a not-a-knot cubic spline of the samples), low-pass filter and
+//! differentiate it — one quintic smoothing spline whose smoothing is the cutoff's ([`Spline::Smoothing`],
+//! the default), or a zero-lag Butterworth (default 6 Hz) and a not-a-knot cubic through the filtered
+//! samples ([`Spline::Interpolating`]) — then `τ = RNEA(q, q̇, q̈) − Σ Jᵀ F_ext` at every sample under the
+//! model's gravity and the external loads of a file ([`super::loads`]), if any ([`super::coupled`] maps
+//! a coupled OpenSim model's coordinates to its chain and back).
 
 use super::butterworth::{self, filtfilt};
 use super::loads::Loads;
@@ -163,6 +165,9 @@ fn check_filter_length(times: &[f64], cutoff_hz: f64, rate_hz: f64, origin: &str
     Err(Error::input(origin, "duration", message))
 }
 
+/// One sample's `(q, q̇, q̈)`, a value per joint each.
+type State = (Vec<f64>, Vec<f64>, Vec<f64>);
+
 /// `(q, q̇, q̈)` at every sample, from each column: filtered by the zero-lag Butterworth and
 /// differentiated by the not-a-knot cubic through the filtered samples ([`Spline::Interpolating`]), or
 /// smoothed and differentiated at once by the quintic smoothing spline of the cutoff ([`Spline::Smoothing`]).
@@ -172,8 +177,8 @@ fn differentiate(
     settings: &Settings,
     rate_hz: f64,
     origin: &str,
-) -> Result<Vec<(Vec<f64>, Vec<f64>, Vec<f64>)>> {
-    let mut states = vec![(Vec::new(), Vec::new(), Vec::new()); times.len()];
+) -> Result<Vec<State>> {
+    let mut states: Vec<State> = vec![(Vec::new(), Vec::new(), Vec::new()); times.len()];
     let smoother = match settings.spline {
         Spline::Smoothing => Some(Smoother::new(times, settings.filter_hz).map_err(|e| relabel(e, origin))?),
         Spline::Interpolating => None,

@@ -15,7 +15,9 @@
 //! is `1/(1 + (f/f₂)⁴)`), 6th order. `λ = (√2 − 1)/(h ω_c⁶)`, `ω_c = 2π f_c`, puts its −3 dB point at the
 //! cutoff `f_c`. Without a cutoff the spline takes the Nyquist frequency's (`f_c = 1/2h`): it then follows
 //! the samples to within `(f/f_c)⁶` and its `f″` converges as `h⁴` inside (the end conditions act within a
-//! few samples of the ends).
+//! few samples of the ends). A cutoff below `f_s/32` puts the knots every `k = ⌊f_s/(32 f_c)⌋` samples
+//! instead (a penalised spline with the same gain to 1.5e-7): the normal equations' condition grows as
+//! `(f_knots/f_c)⁶` and would be singular (1000 Hz samples, 1 Hz cutoff).
 
 use crate::error::{Error, Result};
 use crate::solve::linalg::{Cholesky, SymmetricMatrix};
@@ -23,13 +25,16 @@ use crate::trajectory::quadrature::GaussLegendre;
 
 /// The degree of the spline (quintic: penalty on `f‴`, `m = 3`).
 const DEGREE: usize = 5;
+/// The fewest knots per period of the cutoff (see [`knot_spacing`]).
+const KNOT_RATE_PER_CUTOFF: f64 = 32.0;
 /// Gauss–Legendre nodes per knot span for `∫ Bⱼ‴ Bₖ‴`: the product has degree 4, exact with 3.
 const PENALTY_NODES: usize = 3;
 
 /// The factored normal equations of one set of sample times and one smoothing parameter.
 #[derive(Clone, Debug)]
 pub struct Smoother {
-    /// The clamped knot vector: `t₀` and `tₙ₋₁` each `DEGREE + 1` times, the inner samples once.
+    /// The clamped knot vector: `t₀` and `tₙ₋₁` each `DEGREE + 1` times, the inner samples once (or every
+    /// k-th, [`knot_spacing`]).
     knots: Vec<f64>,
     times: Vec<f64>,
     /// The smoothing parameter λ (units of y²·s⁵ per y²: s⁵).
@@ -49,7 +54,10 @@ impl Smoother {
     /// of the mean spacing when `None`).
     pub fn new(times: &[f64], cutoff_hz: Option<f64>) -> Result<Smoother> {
         let n = times.len();
-        if n < 4 || times.windows(2).any(|w| !(w[1] > w[0])) || !times.iter().all(|t| t.is_finite()) {
+        if n < 4
+            || times.windows(2).any(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater))
+            || !times.iter().all(|t| t.is_finite())
+        {
             let message = format!("needs at least 4 finite, strictly increasing times, got {n}");
             return Err(Error::input("smoothing spline", "times", message));
         }
@@ -60,12 +68,13 @@ impl Smoother {
             return Err(Error::input("smoothing spline", "cutoff", format!("must be a frequency above 0 Hz, got {cutoff}")));
         }
         let lambda = (2f64.sqrt() - 1.0) / (h * (2.0 * std::f64::consts::PI * cutoff).powi(6));
-        let mut knots = vec![times[0]; DEGREE];
-        knots.extend_from_slice(times);
-        knots.extend(std::iter::repeat(times[n - 1]).take(DEGREE));
+        let knots = clamped_knots(times, knot_spacing(h, cutoff));
         let a = normal_matrix(&knots, times, lambda)?;
         let mut cholesky = Cholesky::for_matrix(&a);
-        cholesky.factor(&a, None).map_err(|e| Error::input("smoothing spline", "normal equations", e.to_string()))?;
+        cholesky.factor(&a, None).map_err(|e| {
+            let message = format!("cannot be solved at a {cutoff} Hz cutoff over samples {h} s apart ({e}): lower --rate, raise --filter-hz or use --spline interpolating");
+            Error::input("smoothing spline", "normal equations", message)
+        })?;
         Ok(Smoother { knots, times: times.to_vec(), lambda, cholesky })
     }
 
@@ -96,6 +105,32 @@ impl SmoothingSpline<'_> {
     }
 }
 
+/// The number of samples per knot span: 1 (knots at the samples: the smoothing spline itself) unless the
+/// cutoff lies below `1/(KNOT_RATE_PER_CUTOFF · h)`; then `⌊1/(KNOT_RATE_PER_CUTOFF · f_c · h)⌋`, so that the
+/// knots still come at least `KNOT_RATE_PER_CUTOFF` times per period of the cutoff. The normal equations'
+/// condition grows as `(f_knots/f_c)⁶`; with knots at 1000 Hz samples and a 1 Hz cutoff they are singular
+/// in double precision. What the coarser knots leave out lies above `f_knots/2 = 16 f_c`, where the
+/// spline's gain is below `1/(1 + 0.41·16⁶) = 1.5e-7` anyway.
+fn knot_spacing(h: f64, cutoff: f64) -> usize {
+    ((1.0 / (KNOT_RATE_PER_CUTOFF * cutoff * h)).floor() as usize).max(1)
+}
+
+/// The clamped knot vector over `times`: `t₀` and `tₙ₋₁` each `DEGREE + 1` times and, between them, every
+/// `per_span`-th sample time (evenly spaced when the times are).
+fn clamped_knots(times: &[f64], per_span: usize) -> Vec<f64> {
+    let n = times.len();
+    // K = ⌈(n − 1)/k⌉ spans of (tₙ₋₁ − t₀)/K when coarser than the samples.
+    let spans = (n - 1).div_ceil(per_span);
+    let inner: Vec<f64> = match per_span {
+        1 => times[1..n - 1].to_vec(),
+        _ => (1..spans).map(|j| times[0] + (times[n - 1] - times[0]) * j as f64 / spans as f64).collect(),
+    };
+    let mut knots = vec![times[0]; DEGREE + 1];
+    knots.extend(inner);
+    knots.extend(std::iter::repeat_n(times[n - 1], DEGREE + 1));
+    knots
+}
+
 /// `BᵀB + λP` in banded storage (half-bandwidth `DEGREE`).
 fn normal_matrix(knots: &[f64], times: &[f64], lambda: f64) -> Result<SymmetricMatrix> {
     let m = knots.len() - DEGREE - 1;
@@ -114,7 +149,7 @@ fn normal_matrix(knots: &[f64], times: &[f64], lambda: f64) -> Result<SymmetricM
     }
     // λP: λ Σ_spans Σ_nodes w B‴(s) B‴(s)ᵀ.
     let rule = GaussLegendre::new(PENALTY_NODES)?;
-    for span in times.windows(2) {
+    for span in knots[DEGREE..knots.len() - DEGREE].windows(2) {
         for (s, w) in rule.on_interval(span[0], span[1]) {
             let (first, d) = basis(knots, s);
             add_outer(first, &d[3], lambda * w);
