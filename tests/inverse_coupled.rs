@@ -106,6 +106,25 @@ fn external_loads_change_the_coordinates_forces_by_their_virtual_work_through_th
     }
     eprintln!("coupled loads: change vs −J_qᵀf worst {worst:.2e} N·m of a {scale:.1} N·m peak");
     assert!(scale > 10.0 && worst < 1e-5 * scale, "{worst} of {scale}");
+    // The same push as OpenSim's ExternalLoads XML (ground axes, at the body's origin) loads the same.
+    // Its data file: the CSV's columns as the identifier `calcn_r.f` names them.
+    let data = loads_csv().replace("time_s", "time").replace("_N", "");
+    std::fs::write(dir.join("push.csv"), data).unwrap();
+    let xml = "<OpenSimDocument Version=\"40000\"><ExternalLoads name=\"push\"><objects>\
+        <ExternalForce name=\"push\"><applied_to_body>calcn_r</applied_to_body>\
+        <force_expressed_in_body>ground</force_expressed_in_body><force_identifier>calcn_r.f</force_identifier>\
+        </ExternalForce></objects><datafile>push.csv</datafile></ExternalLoads></OpenSimDocument>";
+    std::fs::write(dir.join("push.xml"), xml).unwrap();
+    let from_xml = loads::read(&dir.join("push.xml"), &osim.model).expect("ExternalLoads");
+    let xml_loaded = coupled::inverse_dynamics(&osim, &m, &settings, Some(&from_xml)).expect("xml loaded");
+    let xml_worst = xml_loaded
+        .record
+        .samples
+        .iter()
+        .zip(&loaded.record.samples)
+        .flat_map(|(a, b)| a.tau.iter().zip(&b.tau).map(|(x, y)| (x - y).abs()))
+        .fold(0.0, f64::max);
+    assert!(xml_worst < 1e-9 * scale, "the XML's loads differ from the CSV's by {xml_worst}");
     std::fs::remove_dir_all(&dir).ok();
 }
 
