@@ -1,7 +1,8 @@
 //! `mintorque inverse` against OpenSim 4.6's `InverseDynamicsTool` (`tests/inverse/opensim_id.py`, in the
 //! venv of `scripts/opensim-venv.sh`) on the same model and motion: the 36-DOF human tree exported as an
 //! `.osim`, moved smoothly in every joint for 2 s at 200 Hz. With filtering off in both (OpenSim filters
-//! with its own IIR and fits GCV quintic splines; we fit not-a-knot cubics), the generalized forces agree
+//! with its own IIR and fits GCV quintic splines; we fit a quintic smoothing spline or, with
+//! `--spline interpolating`, a not-a-knot cubic), the generalized forces agree
 //! to the accuracy of the two splines' derivatives, and each is compared with the exact forces of the
 //! analytic motion.
 
@@ -11,20 +12,9 @@ use mintorque::report::export::mot::{generalized_force_labels, storage};
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
-const RATE_HZ: f64 = 200.0;
-const DURATION_S: f64 = 2.0;
+mod common;
 
-/// Joint `j`'s analytic motion `q = A sin(ωt + φ)` (rad) and its two derivatives.
-fn motion(j: usize, t: f64) -> (f64, f64, f64) {
-    let (a, w, phi) = (0.25 + 0.01 * j as f64, 2.0 * PI * (0.4 + 0.03 * j as f64), 0.3 * j as f64);
-    let s = w * t + phi;
-    (a * s.sin(), a * w * s.cos(), -a * w * w * s.sin())
-}
-
-fn times() -> Vec<f64> {
-    let n = (DURATION_S * RATE_HZ).round() as usize;
-    (0..=n).map(|k| k as f64 / RATE_HZ).collect()
-}
+use common::opensim::*;
 
 /// The motion as a `.mot` (degrees), columns named after the joints (the exported coordinates).
 fn write_motion(model: &Model, path: &Path) {
@@ -33,71 +23,6 @@ fn write_motion(model: &Model, path: &Path) {
     let rows: Vec<(f64, Vec<f64>)> =
         times().iter().map(|&t| (t, (0..model.nv()).map(|j| motion(j, t).0.to_degrees()).collect())).collect();
     std::fs::write(path, storage("smooth_motion", true, &labels, &rows)).expect("write .mot");
-}
-
-/// A Storage file's labels and rows.
-fn read_storage(path: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
-    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let mut lines = text.lines().skip_while(|l| l.trim() != "endheader").skip(1);
-    let labels = lines.next().expect("labels").split_whitespace().map(String::from).collect();
-    let rows = lines
-        .filter(|l| !l.trim().is_empty())
-        .map(|l| l.split_whitespace().map(|x| x.parse().expect("number")).collect())
-        .collect();
-    (labels, rows)
-}
-
-/// The generalized forces of a Storage file, one row per time, in the order of `labels`.
-fn forces(path: &Path, labels: &[String]) -> Vec<Vec<f64>> {
-    let (file_labels, rows) = read_storage(path);
-    let index: Vec<usize> = labels
-        .iter()
-        .map(|l| file_labels.iter().position(|f| f == l).unwrap_or_else(|| panic!("{}: no column {l}", path.display())))
-        .collect();
-    rows.iter().map(|r| index.iter().map(|&i| r[i]).collect()).collect()
-}
-
-/// `max |a − b| / max |b|` over the samples from `skip` to `len − skip`.
-fn relative_error(a: &[Vec<f64>], b: &[Vec<f64>], skip: usize) -> f64 {
-    assert_eq!(a.len(), b.len(), "sample counts");
-    let range = skip..a.len() - skip;
-    let scale = b[range.clone()].iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
-    let diff =
-        a[range.clone()].iter().zip(&b[range]).flat_map(|(x, y)| x.iter().zip(y).map(|(p, q)| (p - q).abs())).fold(0.0, f64::max);
-    diff / scale
-}
-
-fn run_opensim(model: &Path, motion: &Path, dir: &Path, cutoff: f64) -> PathBuf {
-    run_opensim_with(model, motion, dir, cutoff, None)
-}
-
-fn run_opensim_with(model: &Path, motion: &Path, dir: &Path, cutoff: f64, loads: Option<&Path>) -> PathBuf {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let python = root.join("target/opensim-venv/bin/python");
-    assert!(python.exists(), "{} is missing: run `bash scripts/test-deps.sh` (it makes the OpenSim venv)", python.display());
-    let out = std::process::Command::new(python)
-        .arg(root.join("tests/inverse/opensim_id.py"))
-        .args([model, motion, dir])
-        .arg(cutoff.to_string())
-        .args(loads)
-        .output()
-        .expect("run opensim_id.py");
-    assert!(out.status.success(), "opensim_id.py: {}", String::from_utf8_lossy(&out.stderr));
-    dir.join("opensim_id.sto")
-}
-
-fn run_ours(model: &Path, motion: &Path, out: &Path, filter: &[&str]) -> PathBuf {
-    let run = std::process::Command::new(env!("CARGO_BIN_EXE_mintorque"))
-        .arg("inverse")
-        .args([model, motion])
-        .arg("--out")
-        .arg(out)
-        .args(filter)
-        .args(["--quiet", "--no-plots"])
-        .output()
-        .expect("run mintorque");
-    assert!(run.status.success(), "mintorque inverse: {}", String::from_utf8_lossy(&run.stderr));
-    out.join("inverse_dynamics.sto")
 }
 
 /// What both tests start from: the 36-DOF human written as `.osim` and read back, the smooth motion
@@ -266,142 +191,5 @@ fn external_loads_xml_change_the_forces_as_in_opensims_tool() {
         "external loads: the change they make, ours vs OpenSim {e_change:.2e} of its peak (all samples); the loaded forces {e_loaded:.2e} (inner samples); the change's peak {scale:.1} N·m"
     );
     assert!(scale > 0.0 && e_change < 1e-4 && e_loaded < 1e-3, "{e_change:e} {e_loaded:e}");
-    std::fs::remove_dir_all(&dir).ok();
-}
-
-/// Coordinate `j` of the coupled legs over time (rad or m): a swing about a posture inside the knees'
-/// spline points (knees bent −0.8 rad, the pelvis 0.9 m up), translations a tenth of a rotation's
-/// amplitude.
-fn coupled_motion(j: usize, name: &str, translational: bool, t: f64) -> (f64, f64, f64) {
-    let (q, v, a) = motion(j, t);
-    let centre = match name {
-        "knee_angle_r" | "knee_angle_l" => -0.8,
-        "pelvis_ty" => 0.9,
-        _ => 0.0,
-    };
-    let s = if translational { 0.1 } else { 1.0 };
-    (centre + s * q, s * v, s * a)
-}
-
-/// Each coordinate's force as if it drove only its own axis: the chain's force there, the coupled axes'
-/// shares `G_kc τ_chain,k` left out (what reading the chain as uncoupled would give).
-fn own_axis_forces(osim: &osim::Osim, state: &dyn Fn(f64) -> Vec<(f64, f64, f64)>) -> Vec<Vec<f64>> {
-    let mut data = Data::new(&osim.model);
-    let c = &osim.coordinates;
-    times()
-        .iter()
-        .map(|&t| {
-            let (q, v, a) = split(&state(t));
-            let (qc, vc, ac) = c.chain_state(&q, &v, &a).expect("chain state");
-            let tau_chain = rnea(&osim.model, &mut data, &qc, &vc, &ac, &osim.model.gravity, None);
-            let mut tau = vec![0.0; c.len()];
-            c.chain
-                .iter()
-                .zip(tau_chain.iter())
-                .filter(|(d, _)| d.function.is_identity())
-                .for_each(|(d, t)| tau[d.coordinate] = *t);
-            tau
-        })
-        .collect()
-}
-
-/// What a coupled comparison gives: relative errors on the inner samples of ours against OpenSim's tool,
-/// ours and OpenSim's against the exact forces, and the own-axis forces against OpenSim's.
-struct Coupled {
-    vs_opensim: f64,
-    ours_exact: f64,
-    theirs_exact: f64,
-    /// On the columns of the coordinates that drive couplings.
-    own_axis_vs_opensim: f64,
-}
-
-/// `mintorque inverse --no-filter` and OpenSim's InverseDynamicsTool on the coupled model `text` (written
-/// to `dir`) and the analytic motion, and the exact forces `Gᵀ RNEA(φ(q), G q̇, G q̈ + φ″ q̇²)`.
-fn compare_coupled(text: &str, dir: &Path) -> Coupled {
-    std::fs::create_dir_all(dir).expect("temp dir");
-    let model_path = dir.join("coupled.osim");
-    std::fs::write(&model_path, text).expect("write .osim");
-    let osim = osim::load(&model_path).expect("coupled legs");
-    assert!(osim.coordinates.is_coupled(), "the test model must be coupled");
-    let table = mintorque::inverse::coupled::coordinate_joints(&osim);
-    let names: Vec<String> = table.joint_names().iter().map(|s| s.to_string()).collect();
-    let prismatic: Vec<bool> = table.joints[1..].iter().map(|j| j.kind == JointKind::Prismatic).collect();
-    let state = |t: f64| -> Vec<(f64, f64, f64)> {
-        names.iter().enumerate().map(|(j, n)| coupled_motion(j, n, prismatic[j], t)).collect()
-    };
-    // The .mot: rotational coordinates in degrees, translational in metres.
-    let rows: Vec<(f64, Vec<f64>)> = times()
-        .iter()
-        .map(|&t| (t, state(t).iter().zip(&prismatic).map(|(s, &p)| if p { s.0 } else { s.0.to_degrees() }).collect()))
-        .collect();
-    let motion_path = dir.join("coupled.mot");
-    std::fs::write(&motion_path, storage("coupled_motion", true, &names, &rows)).expect("write .mot");
-    let labels = generalized_force_labels(&table);
-    assert!(labels.contains(&"knee_angle_r_moment".to_string()) && labels.contains(&"pelvis_ty_force".to_string()));
-    let mut data = Data::new(&osim.model);
-    let exact: Vec<Vec<f64>> = times()
-        .iter()
-        .map(|&t| {
-            let (q, v, a) = split(&state(t));
-            osim.coordinates.inverse_dynamics(&osim.model, &mut data, &q, &v, &a).expect("exact forces")
-        })
-        .collect();
-    let theirs = forces(&run_opensim(&model_path, &motion_path, dir, -1.0), &labels);
-    let ours = forces(&run_ours(&model_path, &motion_path, &dir.join("ours"), &["--no-filter"]), &labels);
-    let skip = 10;
-    Coupled {
-        vs_opensim: relative_error(&ours, &theirs, skip),
-        ours_exact: relative_error(&ours, &exact, skip),
-        theirs_exact: relative_error(&theirs, &exact, skip),
-        own_axis_vs_opensim: relative_error(
-            &coupled_columns(&osim, &own_axis_forces(&osim, &state)),
-            &coupled_columns(&osim, &theirs),
-            skip,
-        ),
-    }
-}
-
-/// The columns of the coordinates that drive a coupled axis (the knees, the ankles).
-fn coupled_columns(osim: &osim::Osim, x: &[Vec<f64>]) -> Vec<Vec<f64>> {
-    let c = &osim.coordinates;
-    let coupled: Vec<usize> =
-        (0..c.len()).filter(|&k| c.chain.iter().any(|d| d.coordinate == k && !d.function.is_identity())).collect();
-    assert!(coupled.len() >= 4, "knees and ankles drive couplings");
-    x.iter().map(|r| coupled.iter().map(|&k| r[k]).collect()).collect()
-}
-
-/// A state's positions, velocities and accelerations.
-fn split(s: &[(f64, f64, f64)]) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
-    (s.iter().map(|x| x.0).collect(), s.iter().map(|x| x.1).collect(), s.iter().map(|x| x.2).collect())
-}
-
-/// `mintorque inverse` on a coupled `.osim` (`tests/data/osim/coupled_legs.osim`: knees whose translations
-/// follow flexion by SimmSplines, ankles by a polynomial): the `.mot` holds OpenSim's coordinates, the
-/// `.sto` their generalized forces `Gᵀ τ_chain` under OpenSim's column names. Compared with OpenSim's
-/// InverseDynamicsTool on the model with Gimbal hips (the file's BallJoints written as GimbalJoints: the
-/// same rotation `Rx·Ry·Rz` of the same coordinates, but OpenSim's speeds are then `q̇`), and on the file
-/// as it is, where the tool takes the Ball hips' coordinate rates for its speeds (angular velocities) and
-/// misses the exact forces, which ours still give.
-#[test]
-fn inverse_dynamics_of_a_coupled_osim_matches_opensims_tool() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let text = std::fs::read_to_string(root.join("tests/data/osim/coupled_legs.osim")).expect("coupled legs");
-    let dir = std::env::temp_dir().join(format!("mintorque-inverse-coupled-{}", std::process::id()));
-    let gimbal_text = text.replace("<BallJoint ", "<GimbalJoint ").replace("</BallJoint>", "</GimbalJoint>");
-    assert_ne!(gimbal_text, text, "the model has Ball hips");
-    let gimbal = compare_coupled(&gimbal_text, &dir.join("gimbal"));
-    let ball = compare_coupled(&text, &dir.join("ball"));
-    for (name, c) in [("Gimbal hips", &gimbal), ("Ball hips", &ball)] {
-        eprintln!(
-            "coupled legs, {name}, unfiltered, inner samples: ours vs OpenSim's tool {:.2e}; vs the exact forces: ours {:.2e}, OpenSim {:.2e}; own axes only vs OpenSim {:.2e}",
-            c.vs_opensim, c.ours_exact, c.theirs_exact, c.own_axis_vs_opensim
-        );
-    }
-    assert!(gimbal.vs_opensim < 1e-3, "ours and OpenSim's differ by {:e} on the coupled legs", gimbal.vs_opensim);
-    assert!(gimbal.ours_exact < 1e-3 && ball.ours_exact < 1e-3, "{:e} {:e}", gimbal.ours_exact, ball.ours_exact);
-    // Dropping the couplings' shares is far off: the comparison can fail.
-    assert!(gimbal.own_axis_vs_opensim > 1e-2, "the coupling makes a difference of only {:e}", gimbal.own_axis_vs_opensim);
-    // OpenSim's tool on Ball joints: its speeds are not the coordinates' rates.
-    assert!(ball.theirs_exact > 1e-2, "OpenSim's tool now handles Ball joints ({:e}): update docs/interop.md", ball.theirs_exact);
     std::fs::remove_dir_all(&dir).ok();
 }

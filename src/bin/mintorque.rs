@@ -172,8 +172,8 @@ enum Command {
         /// How q̇, q̈ are obtained: `smoothing` (one quintic smoothing spline, −3 dB at the cutoff: filter and
         /// derivatives at once) or `interpolating` (the Butterworth filter, then a not-a-knot cubic through
         /// the filtered samples).
-        #[arg(long, value_enum, default_value_t = SplineArg::Smoothing)]
-        spline: SplineArg,
+        #[arg(long, value_enum, default_value_t = inverse::SplineArg::Smoothing)]
+        spline: inverse::SplineArg,
         /// External loads on the figure over time: CSV (time_s, FRAME.fx_N … FRAME.mz_Nm; world axes) or
         /// OpenSim's ExternalLoads .xml with its datafile.
         #[arg(long)]
@@ -216,12 +216,6 @@ struct ModelArgs {
     /// independent degree of freedom (the coupling dropped).
     #[arg(long, value_enum, default_value_t = MimicArg::Refuse)]
     mimic: MimicArg,
-}
-
-#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-enum SplineArg {
-    Interpolating,
-    Smoothing,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -270,19 +264,6 @@ fn load_model(path: &Path, read: ModelArgs) -> Result<mintorque::Model> {
         }
         _ => e.into(),
     })
-}
-
-/// The model of `mintorque inverse`: a coupled `.osim` keeps its coordinates (its forces are theirs),
-/// any other model file is read as every command reads it.
-fn inverse_subject(path: &Path, read: ModelArgs) -> Result<inverse::Subject> {
-    if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("osim")) {
-        let osim = mintorque::model::osim::load(path)?;
-        if osim.coordinates.is_coupled() {
-            osim.ignored.iter().for_each(|note| eprintln!("note: {}: ignored {note}", path.display()));
-            return Ok(inverse::Subject::Coupled(Box::new(osim)));
-        }
-    }
-    load_model(path, read).map(inverse::Subject::Joints)
 }
 
 /// Plans a task (overrides applied, settings checked), reporting why it did not converge if it did not.
@@ -464,13 +445,13 @@ fn run(cli: Cli) -> Result<ExitCode> {
         }
         Command::Simulate { plan: path, steps } => Ok(exit(run_simulate(&path, steps)?)),
         Command::Inverse { model, motion, out, filter_hz, no_filter, rate, spline, loads, units, quiet, no_plots, read } => {
-            let subject = inverse_subject(&model, read)?;
+            let subject = inverse::subject(&model, |path| load_model(path, read))?;
             let (loads, units) = (loads.as_deref(), units.as_deref());
-            let spline = match spline {
-                SplineArg::Interpolating => mintorque::inverse::Spline::Interpolating,
-                SplineArg::Smoothing => mintorque::inverse::Spline::Smoothing,
+            let settings = mintorque::inverse::Settings {
+                filter_hz: (!no_filter).then_some(filter_hz),
+                rate_hz: rate,
+                spline: spline.into(),
             };
-            let settings = mintorque::inverse::Settings { filter_hz: (!no_filter).then_some(filter_hz), rate_hz: rate, spline };
             let args = inverse::Args { motion: &motion, out: &out, settings, loads, units, quiet, no_plots };
             inverse::run(&subject, &args).map(|()| ExitCode::SUCCESS)
         }

@@ -15,6 +15,35 @@ pub enum Subject {
     Coupled(Box<Osim>),
 }
 
+/// `--spline`.
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum SplineArg {
+    Interpolating,
+    Smoothing,
+}
+
+impl From<SplineArg> for inverse::Spline {
+    fn from(s: SplineArg) -> inverse::Spline {
+        match s {
+            SplineArg::Interpolating => inverse::Spline::Interpolating,
+            SplineArg::Smoothing => inverse::Spline::Smoothing,
+        }
+    }
+}
+
+/// The model of `mintorque inverse`: a coupled `.osim` keeps its coordinates (its forces are theirs),
+/// any other model file is read by `load` as every command reads it.
+pub fn subject(path: &Path, load: impl FnOnce(&Path) -> Result<Model>) -> Result<Subject> {
+    if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("osim")) {
+        let osim = mintorque::model::osim::load(path)?;
+        if osim.coordinates.is_coupled() {
+            osim.ignored.iter().for_each(|note| eprintln!("note: {}: ignored {note}", path.display()));
+            return Ok(Subject::Coupled(Box::new(osim)));
+        }
+    }
+    load(path).map(Subject::Joints)
+}
+
 /// What the command was asked.
 pub struct Args<'a> {
     pub motion: &'a Path,
