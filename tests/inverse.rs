@@ -133,7 +133,7 @@ mod files {
     }
 
     pub fn unfiltered() -> Settings {
-        Settings { filter_hz: None, rate_hz: None }
+        Settings { filter_hz: None, ..Default::default() }
     }
 }
 
@@ -211,10 +211,10 @@ fn a_motion_too_short_to_filter_says_so_and_runs_unfiltered() {
     let model = files::model();
     let message = mintorque::inverse::inverse_dynamics(&model, &m, &Default::default(), None).expect_err("too short").to_string();
     assert!(message.contains("too short to low-pass filter at 6 Hz") && message.contains("m.mot"), "{message}");
-    let settings = mintorque::inverse::Settings { filter_hz: Some(12.0), rate_hz: None };
+    let settings = mintorque::inverse::Settings { filter_hz: Some(12.0), ..Default::default() };
     assert!(mintorque::inverse::inverse_dynamics(&model, &m, &settings, None).is_ok());
     assert!(mintorque::inverse::inverse_dynamics(&model, &m, &files::unfiltered(), None).is_ok());
-    let nyquist = mintorque::inverse::Settings { filter_hz: Some(45.0), rate_hz: None };
+    let nyquist = mintorque::inverse::Settings { filter_hz: Some(45.0), ..Default::default() };
     let message = mintorque::inverse::inverse_dynamics(&model, &m, &nyquist, None).expect_err("above Nyquist").to_string();
     assert!(message.contains("--filter-hz") && message.contains("Nyquist"), "{message}");
     std::fs::remove_dir_all(&dir).ok();
@@ -241,12 +241,20 @@ fn inverse_dynamics_of_a_planned_motion_gives_back_its_torques() {
         PENDULUM.as_ref(),
         &plan.join("double_pendulum.mot"),
         &dir.join("mot"),
-        &["--no-filter", "-q"],
+        &["--no-filter", "--spline", "interpolating", "-q"],
     ));
     let from_csv = cli::storage(&cli::inverse(
         PENDULUM.as_ref(),
         &plan.join("trajectory.csv"),
         &dir.join("csv"),
+        &["--no-filter", "--spline", "interpolating", "-q", "--no-plots"],
+    ));
+    // The default, the quintic smoothing spline (at the Nyquist frequency when unfiltered): as close
+    // inside, further off at the ends, where its natural end conditions (q⃛ = q⁗ = 0) act.
+    let smoothing = cli::storage(&cli::inverse(
+        PENDULUM.as_ref(),
+        &plan.join("double_pendulum.mot"),
+        &dir.join("s"),
         &["--no-filter", "-q", "--no-plots"],
     ));
     let filtered = cli::storage(&cli::inverse(
@@ -259,10 +267,12 @@ fn inverse_dynamics_of_a_planned_motion_gives_back_its_torques() {
     // 100 Hz samples rounds off over a sample or two; between the knots the torques come back closely.
     let (worst, typical) = (cli::relative(&from_mot.1, &planned, 1.0), cli::relative(&from_mot.1, &planned, 0.5));
     let (csv_worst, e_filtered) = (cli::relative(&from_csv.1, &planned, 1.0), cli::relative(&filtered.1, &planned, 0.5));
+    let (s_worst, s_typical) = (cli::relative(&smoothing.1, &planned, 1.0), cli::relative(&smoothing.1, &planned, 0.5));
     eprintln!(
         "planned torques given back: worst {worst:.2e}, median {typical:.2e} of the peak (.mot), worst {csv_worst:.2e} \
-         (trajectory.csv); filtered at 1.5 Hz: median {e_filtered:.2e}"
+         (trajectory.csv); filtered at 1.5 Hz: median {e_filtered:.2e}; the smoothing spline: worst {s_worst:.2e}, median {s_typical:.2e}"
     );
+    assert!(s_typical < 1e-4, "the smoothing spline's median {s_typical}");
     assert_eq!(from_mot.0, labels);
     assert!(worst < 0.03 && csv_worst < 0.03 && typical < 1e-4, "{worst} {csv_worst} {typical}");
     // The comparison can tell: a 1.5 Hz filter takes the motion's fast part away.

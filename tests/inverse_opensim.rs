@@ -1,7 +1,8 @@
 //! `mintorque inverse` against OpenSim 4.6's `InverseDynamicsTool` (`tests/inverse/opensim_id.py`, in the
 //! venv of `scripts/opensim-venv.sh`) on the same model and motion: the 36-DOF human tree exported as an
 //! `.osim`, moved smoothly in every joint for 2 s at 200 Hz. With filtering off in both (OpenSim filters
-//! with its own IIR and fits GCV quintic splines; we fit not-a-knot cubics), the generalized forces agree
+//! with its own IIR and fits GCV quintic splines; we fit a quintic smoothing spline or, with
+//! `--spline interpolating`, a not-a-knot cubic), the generalized forces agree
 //! to the accuracy of the two splines' derivatives, and each is compared with the exact forces of the
 //! analytic motion.
 
@@ -11,20 +12,9 @@ use mintorque::report::export::mot::{generalized_force_labels, storage};
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
-const RATE_HZ: f64 = 200.0;
-const DURATION_S: f64 = 2.0;
+mod common;
 
-/// Joint `j`'s analytic motion `q = A sin(ωt + φ)` (rad) and its two derivatives.
-fn motion(j: usize, t: f64) -> (f64, f64, f64) {
-    let (a, w, phi) = (0.25 + 0.01 * j as f64, 2.0 * PI * (0.4 + 0.03 * j as f64), 0.3 * j as f64);
-    let s = w * t + phi;
-    (a * s.sin(), a * w * s.cos(), -a * w * w * s.sin())
-}
-
-fn times() -> Vec<f64> {
-    let n = (DURATION_S * RATE_HZ).round() as usize;
-    (0..=n).map(|k| k as f64 / RATE_HZ).collect()
-}
+use common::opensim::*;
 
 /// The motion as a `.mot` (degrees), columns named after the joints (the exported coordinates).
 fn write_motion(model: &Model, path: &Path) {
@@ -33,71 +23,6 @@ fn write_motion(model: &Model, path: &Path) {
     let rows: Vec<(f64, Vec<f64>)> =
         times().iter().map(|&t| (t, (0..model.nv()).map(|j| motion(j, t).0.to_degrees()).collect())).collect();
     std::fs::write(path, storage("smooth_motion", true, &labels, &rows)).expect("write .mot");
-}
-
-/// A Storage file's labels and rows.
-fn read_storage(path: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
-    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let mut lines = text.lines().skip_while(|l| l.trim() != "endheader").skip(1);
-    let labels = lines.next().expect("labels").split_whitespace().map(String::from).collect();
-    let rows = lines
-        .filter(|l| !l.trim().is_empty())
-        .map(|l| l.split_whitespace().map(|x| x.parse().expect("number")).collect())
-        .collect();
-    (labels, rows)
-}
-
-/// The generalized forces of a Storage file, one row per time, in the order of `labels`.
-fn forces(path: &Path, labels: &[String]) -> Vec<Vec<f64>> {
-    let (file_labels, rows) = read_storage(path);
-    let index: Vec<usize> = labels
-        .iter()
-        .map(|l| file_labels.iter().position(|f| f == l).unwrap_or_else(|| panic!("{}: no column {l}", path.display())))
-        .collect();
-    rows.iter().map(|r| index.iter().map(|&i| r[i]).collect()).collect()
-}
-
-/// `max |a − b| / max |b|` over the samples from `skip` to `len − skip`.
-fn relative_error(a: &[Vec<f64>], b: &[Vec<f64>], skip: usize) -> f64 {
-    assert_eq!(a.len(), b.len(), "sample counts");
-    let range = skip..a.len() - skip;
-    let scale = b[range.clone()].iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
-    let diff =
-        a[range.clone()].iter().zip(&b[range]).flat_map(|(x, y)| x.iter().zip(y).map(|(p, q)| (p - q).abs())).fold(0.0, f64::max);
-    diff / scale
-}
-
-fn run_opensim(model: &Path, motion: &Path, dir: &Path, cutoff: f64) -> PathBuf {
-    run_opensim_with(model, motion, dir, cutoff, None)
-}
-
-fn run_opensim_with(model: &Path, motion: &Path, dir: &Path, cutoff: f64, loads: Option<&Path>) -> PathBuf {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let python = root.join("target/opensim-venv/bin/python");
-    assert!(python.exists(), "{} is missing: run `bash scripts/test-deps.sh` (it makes the OpenSim venv)", python.display());
-    let out = std::process::Command::new(python)
-        .arg(root.join("tests/inverse/opensim_id.py"))
-        .args([model, motion, dir])
-        .arg(cutoff.to_string())
-        .args(loads)
-        .output()
-        .expect("run opensim_id.py");
-    assert!(out.status.success(), "opensim_id.py: {}", String::from_utf8_lossy(&out.stderr));
-    dir.join("opensim_id.sto")
-}
-
-fn run_ours(model: &Path, motion: &Path, out: &Path, filter: &[&str]) -> PathBuf {
-    let run = std::process::Command::new(env!("CARGO_BIN_EXE_mintorque"))
-        .arg("inverse")
-        .args([model, motion])
-        .arg("--out")
-        .arg(out)
-        .args(filter)
-        .args(["--quiet", "--no-plots"])
-        .output()
-        .expect("run mintorque");
-    assert!(run.status.success(), "mintorque inverse: {}", String::from_utf8_lossy(&run.stderr));
-    out.join("inverse_dynamics.sto")
 }
 
 /// What both tests start from: the 36-DOF human written as `.osim` and read back, the smooth motion
@@ -143,7 +68,9 @@ fn inverse_dynamics_of_a_motion_matches_opensims_tool() {
         .collect();
 
     let theirs = forces(&run_opensim(&model_path, &motion_path, &dir, -1.0), &labels);
-    let ours = forces(&run_ours(&model_path, &motion_path, &dir.join("ours"), &["--no-filter"]), &labels);
+    let ours =
+        forces(&run_ours(&model_path, &motion_path, &dir.join("ours"), &["--no-filter", "--spline", "interpolating"]), &labels);
+    let smoothing = forces(&run_ours(&model_path, &motion_path, &dir.join("smooth"), &["--no-filter"]), &labels);
     let skip = 10; // 50 ms at each end, where both splines' end conditions act
     let (vs_opensim, vs_opensim_all) = (relative_error(&ours, &theirs, skip), relative_error(&ours, &theirs, 0));
     let (ours_exact, theirs_exact) = (relative_error(&ours, &exact, 0), relative_error(&theirs, &exact, 0));
@@ -152,6 +79,13 @@ fn inverse_dynamics_of_a_motion_matches_opensims_tool() {
         "unfiltered: ours vs OpenSim {vs_opensim:.2e} (inner samples), {vs_opensim_all:.2e} (all samples); vs the exact forces: \
          ours {ours_inner:.2e} inner, {ours_exact:.2e} all; OpenSim {theirs_inner:.2e} inner, {theirs_exact:.2e} all"
     );
+    // The default quintic smoothing spline (at the Nyquist frequency) against OpenSim's quintic spline.
+    let (s_opensim, s_opensim_all) = (relative_error(&smoothing, &theirs, skip), relative_error(&smoothing, &theirs, 0));
+    let (s_inner, s_all) = (relative_error(&smoothing, &exact, skip), relative_error(&smoothing, &exact, 0));
+    eprintln!(
+        "unfiltered, the smoothing spline: vs OpenSim {s_opensim:.2e} (inner), {s_opensim_all:.2e} (all); vs the exact forces {s_inner:.2e} (inner), {s_all:.2e} (all)"
+    );
+    assert!(s_opensim < 1e-3 && s_inner < 1e-3, "{s_opensim:e} {s_inner:e}");
     assert!(vs_opensim < 1e-3, "ours and OpenSim's differ by {vs_opensim:e}");
     assert!(ours_exact < 3e-3, "ours differ from the exact forces by {ours_exact:e}");
     // At the ends OpenSim's natural quintic spline bends q̈ away; the not-a-knot cubic does not.
@@ -164,13 +98,19 @@ fn inverse_dynamics_of_a_motion_matches_opensims_tool() {
     // unfiltered.
     let theirs_6 = forces(&run_opensim(&model_path, &motion_path, &dir.join("osim6"), 6.0), &labels);
     let ours_6 = forces(&run_ours(&model_path, &motion_path, &dir.join("ours6"), &["--filter-hz", "6"]), &labels);
+    let cubic_6 = forces(
+        &run_ours(&model_path, &motion_path, &dir.join("cubic6"), &["--filter-hz", "6", "--spline", "interpolating"]),
+        &labels,
+    );
     let middle = (0.4 * RATE_HZ) as usize; // 0.4 s = 2.4/f_c from each end
     let (f_ours, f_theirs) = (relative_error(&ours_6, &exact, middle), relative_error(&theirs_6, &exact, middle));
     let (f_ours_ends, f_theirs_ends) = (relative_error(&ours_6, &exact, 0), relative_error(&theirs_6, &exact, 0));
+    let (f_cubic, f_cubic_ends) = (relative_error(&cubic_6, &exact, middle), relative_error(&cubic_6, &exact, 0));
     eprintln!(
-        "filtered at 6 Hz, vs the exact forces: ours {f_ours:.2e} (0.4 s from the ends), {f_ours_ends:.2e} (all); \
-         OpenSim {f_theirs:.2e}, {f_theirs_ends:.2e}"
+        "filtered at 6 Hz, vs the exact forces: ours (smoothing spline) {f_ours:.2e} (0.4 s from the ends), {f_ours_ends:.2e} (all); \
+         ours (Butterworth, cubic) {f_cubic:.2e}, {f_cubic_ends:.2e}; OpenSim {f_theirs:.2e}, {f_theirs_ends:.2e}"
     );
+    assert!(f_cubic < 3e-3, "the Butterworth at 6 Hz changes the forces by {f_cubic:e} away from the ends");
     assert!(f_ours < 3e-3, "our 6 Hz filter changes the forces of a 1.45 Hz motion by {f_ours:e} away from the ends");
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -151,7 +151,7 @@ enum Command {
     /// Inverse dynamics of a recorded motion (OpenSim .mot/.sto, CSV or BVH; docs/interop.md): resampled,
     /// low-pass filtered, differentiated by splines; torques as OpenSim's .sto and CSV, plots, ergonomics.
     Inverse {
-        /// A URDF, MJCF, figure file or (uncoupled) OpenSim model.
+        /// A URDF, MJCF, figure file or OpenSim model (a coupled one's forces are its coordinates').
         model: PathBuf,
         /// The motion: .mot/.sto (time and one column per joint; inDegrees as the header says), .csv
         /// (time and one column per joint, degrees or metres; `NAME.q_rad` for radians) or .bvh (joints
@@ -169,6 +169,11 @@ enum Command {
         /// Resample to this even rate (Hz; default: the file's mean rate).
         #[arg(long)]
         rate: Option<f64>,
+        /// How q̇, q̈ are obtained: `smoothing` (one quintic smoothing spline, −3 dB at the cutoff: filter and
+        /// derivatives at once) or `interpolating` (the Butterworth filter, then a not-a-knot cubic through
+        /// the filtered samples).
+        #[arg(long, value_enum, default_value_t = inverse::SplineArg::Smoothing)]
+        spline: inverse::SplineArg,
         /// External loads on the figure over time: CSV (time_s, FRAME.fx_N … FRAME.mz_Nm; world axes) or
         /// OpenSim's ExternalLoads .xml with its datafile.
         #[arg(long)]
@@ -439,11 +444,16 @@ fn run(cli: Cli) -> Result<ExitCode> {
             Ok(ExitCode::SUCCESS)
         }
         Command::Simulate { plan: path, steps } => Ok(exit(run_simulate(&path, steps)?)),
-        Command::Inverse { model, motion, out, filter_hz, no_filter, rate, loads, units, quiet, no_plots, read } => {
-            let model = load_model(&model, read)?;
+        Command::Inverse { model, motion, out, filter_hz, no_filter, rate, spline, loads, units, quiet, no_plots, read } => {
+            let subject = inverse::subject(&model, |path| load_model(path, read))?;
             let (loads, units) = (loads.as_deref(), units.as_deref());
-            let args = inverse::Args { motion: &motion, out: &out, filter_hz, no_filter, rate, loads, units, quiet, no_plots };
-            inverse::run(&model, &args).map(|()| ExitCode::SUCCESS)
+            let settings = mintorque::inverse::Settings {
+                filter_hz: (!no_filter).then_some(filter_hz),
+                rate_hz: rate,
+                spline: spline.into(),
+            };
+            let args = inverse::Args { motion: &motion, out: &out, settings, loads, units, quiet, no_plots };
+            inverse::run(&subject, &args).map(|()| ExitCode::SUCCESS)
         }
         Command::Dynamics { model, states, gravity, bench, read } => {
             run_dynamics(&model, read, states, gravity, bench).map(|()| ExitCode::SUCCESS)

@@ -1,12 +1,15 @@
 //! Inverse dynamics of a recorded motion, the steps of OpenSim's inverse dynamics tool: resample the
-//! motion to an even rate (through a not-a-knot cubic spline of the samples), low-pass filter it (zero-lag
-//! Butterworth, default 6 Hz), differentiate it (a second such spline through the filtered samples gives
-//! `q̇` and `q̈`), then `τ = RNEA(q, q̇, q̈) − Σ Jᵀ F_ext` at every sample under the model's gravity and the
-//! external loads of a file ([`super::loads`]), if any.
+//! motion to an even rate (through a not-a-knot cubic spline of the samples), low-pass filter and
+//! differentiate it — one quintic smoothing spline whose smoothing is the cutoff's ([`Spline::Smoothing`],
+//! the default), or a zero-lag Butterworth (default 6 Hz) and a not-a-knot cubic through the filtered
+//! samples ([`Spline::Interpolating`]) — then `τ = RNEA(q, q̇, q̈) − Σ Jᵀ F_ext` at every sample under the
+//! model's gravity and the external loads of a file ([`super::loads`]), if any ([`super::coupled`] maps
+//! a coupled OpenSim model's coordinates to its chain and back).
 
 use super::butterworth::{self, filtfilt};
 use super::loads::Loads;
 use super::motion::Motion;
+use super::smoothing::Smoother;
 use super::spline::CubicSpline;
 use crate::dynamics::{rnea::rnea, Data};
 use crate::error::{Error, Result};
@@ -26,11 +29,26 @@ pub struct Settings {
     pub filter_hz: Option<f64>,
     /// The even sample rate to resample to (Hz); `None` keeps the file's mean rate.
     pub rate_hz: Option<f64>,
+    /// How the motion is differentiated (and, when smoothing, filtered).
+    pub spline: Spline,
+}
+
+/// How `q̇` and `q̈` are obtained (`--spline`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Spline {
+    /// The zero-lag Butterworth filter, then the not-a-knot cubic spline through the filtered samples.
+    Interpolating,
+    /// One quintic smoothing spline whose smoothing parameter is the cutoff's ([`super::smoothing`]):
+    /// filter and derivatives at once; without a filter, the smoothing of the Nyquist frequency. The
+    /// default: at a cutoff its accelerations are closer to the truth than the Butterworth's, inside and
+    /// at the ends (`docs/interop.md`).
+    #[default]
+    Smoothing,
 }
 
 impl Default for Settings {
     fn default() -> Settings {
-        Settings { filter_hz: Some(DEFAULT_FILTER_HZ), rate_hz: None }
+        Settings { filter_hz: Some(DEFAULT_FILTER_HZ), rate_hz: None, spline: Spline::default() }
     }
 }
 
@@ -42,30 +60,62 @@ pub struct Inverse {
     pub record: PlanRecord,
     /// The even sample rate used (Hz): the one asked for, adjusted so that the samples span the motion.
     pub rate_hz: f64,
+    /// A coupled model's chain ([`super::coupled`]): its state `φ(q)`, `G q̇`, `G q̈ + φ″ q̇²` and forces
+    /// `τ_chain` at every sample, for the joint loads; `None` when the record is the model's own joints.
+    pub chain: Option<PlanRecord>,
     /// The settings asked for.
     pub settings: Settings,
     /// The file's number of samples.
     pub input_samples: usize,
 }
 
-/// Inverse dynamics of `motion` on `model` as `settings` say, under the external `loads` if given.
+/// Inverse dynamics of `motion` on `model` as `settings` say, under the external `loads` if given:
+/// `τ = RNEA(q, q̇, q̈) − Σ Jᵀ F_ext` at every sample.
 pub fn inverse_dynamics(model: &Model, motion: &Motion, settings: &Settings, loads: Option<&Loads>) -> Result<Inverse> {
+    let mut data = Data::new(model);
+    let forces = |t: f64, q: &[f64], qd: &[f64], qdd: &[f64]| {
+        let mut tau = rnea(model, &mut data, q, qd, qdd, &model.gravity, None).as_slice().to_vec();
+        if let Some(l) = loads {
+            l.subtract(model, &data, t, &mut tau);
+        }
+        Ok(tau)
+    };
+    process(model, motion, settings, loads, forces)
+}
+
+/// The steps every model shares: even times, resampling, the filter, the derivatives, and at every
+/// sample the generalized forces `forces(t, q, q̇, q̈)` of `joints` (the model's joints, or a coupled
+/// model's coordinates), checked finite.
+pub(super) fn process(
+    joints: &Model,
+    motion: &Motion,
+    settings: &Settings,
+    loads: Option<&Loads>,
+    mut forces: impl FnMut(f64, &[f64], &[f64], &[f64]) -> Result<Vec<f64>>,
+) -> Result<Inverse> {
     let origin = motion.origin.as_str();
     let times = even_times(motion, settings.rate_hz)?;
     if let Some(l) = loads {
         l.check_span(times[0], times[times.len() - 1])?;
     }
     let rate_hz = (times.len() - 1) as f64 / (times[times.len() - 1] - times[0]);
-    let mut columns = resample(motion, &times)?;
+    let columns = resample(motion, &times)?;
     if let Some(cutoff) = settings.filter_hz {
         check_filter_length(&times, cutoff, rate_hz, origin)?;
-        for c in columns.iter_mut() {
-            *c = filtfilt(c, cutoff, rate_hz).map_err(|e| relabel(e, origin))?;
-        }
     }
-    let samples = differentiate_and_solve(model, &times, &columns, loads, origin)?;
-    let record = record_of(model, samples);
-    Ok(Inverse { record, rate_hz, settings: *settings, input_samples: motion.times.len() })
+    let states = differentiate(&times, columns, settings, rate_hz, origin)?;
+    let mut samples = Vec::with_capacity(times.len());
+    for (k, (&t, (q, qd, qdd))) in times.iter().zip(states).enumerate() {
+        let tau = forces(t, &q, &qd, &qdd).map_err(|e| relabel(e, origin))?;
+        if let Some(j) = tau.iter().position(|x| !x.is_finite()) {
+            let message =
+                format!("the torque of joint \"{}\" is not finite ({}): nothing written", joints.joints[j + 1].name, tau[j]);
+            return Err(Error::input(origin, format!("sample {k} (t = {t} s)"), message));
+        }
+        samples.push(SampleRecord { t, q, qd, qdd, tau, contact_forces: Vec::new() });
+    }
+    let record = record_of(joints, samples);
+    Ok(Inverse { record, chain: None, rate_hz, settings: *settings, input_samples: motion.times.len() })
 }
 
 /// Even sample times from the motion's first to its last: at `rate_hz` (the file's mean rate when
@@ -115,43 +165,54 @@ fn check_filter_length(times: &[f64], cutoff_hz: f64, rate_hz: f64, origin: &str
     Err(Error::input(origin, "duration", message))
 }
 
-/// `q̇`, `q̈` from a spline through each joint's (filtered) samples, and `τ = RNEA(q, q̇, q̈) − Σ Jᵀ F_ext`.
-fn differentiate_and_solve(
-    model: &Model,
+/// One sample's `(q, q̇, q̈)`, a value per joint each.
+type State = (Vec<f64>, Vec<f64>, Vec<f64>);
+
+/// `(q, q̇, q̈)` at every sample, from each column: filtered by the zero-lag Butterworth and
+/// differentiated by the not-a-knot cubic through the filtered samples ([`Spline::Interpolating`]), or
+/// smoothed and differentiated at once by the quintic smoothing spline of the cutoff ([`Spline::Smoothing`]).
+fn differentiate(
     times: &[f64],
-    columns: &[Vec<f64>],
-    loads: Option<&Loads>,
+    mut columns: Vec<Vec<f64>>,
+    settings: &Settings,
+    rate_hz: f64,
     origin: &str,
-) -> Result<Vec<SampleRecord>> {
-    let splines: Vec<CubicSpline> =
-        columns.iter().map(|c| CubicSpline::new(times, c).map_err(|e| relabel(e, origin))).collect::<Result<_>>()?;
-    let mut data = Data::new(model);
-    let mut samples = Vec::with_capacity(times.len());
-    for (k, &t) in times.iter().enumerate() {
-        let (mut q, mut qd, mut qdd) = (Vec::new(), Vec::new(), Vec::new());
-        for (j, s) in splines.iter().enumerate() {
-            // At a knot the spline's value is the sample itself.
-            let (_, d1, d2) = s.eval(t);
-            q.push(columns[j][k]);
-            qd.push(d1);
-            qdd.push(d2);
+) -> Result<Vec<State>> {
+    let mut states: Vec<State> = vec![(Vec::new(), Vec::new(), Vec::new()); times.len()];
+    let smoother = match settings.spline {
+        Spline::Smoothing => Some(Smoother::new(times, settings.filter_hz).map_err(|e| relabel(e, origin))?),
+        Spline::Interpolating => None,
+    };
+    for c in columns.iter_mut() {
+        let derivatives: Vec<(f64, f64, f64)> = match &smoother {
+            None => {
+                if let Some(cutoff) = settings.filter_hz {
+                    *c = filtfilt(c, cutoff, rate_hz).map_err(|e| relabel(e, origin))?;
+                }
+                let spline = CubicSpline::new(times, c).map_err(|e| relabel(e, origin))?;
+                // At a knot the spline's value is the sample itself.
+                let at_knot = |(&t, &y): (&f64, &f64)| {
+                    let (_, d1, d2) = spline.eval(t);
+                    (y, d1, d2)
+                };
+                times.iter().zip(c.iter()).map(at_knot).collect()
+            }
+            Some(smoother) => {
+                let spline = smoother.fit(c).map_err(|e| relabel(e, origin))?;
+                times.iter().map(|&t| spline.eval(t)).collect()
+            }
+        };
+        for (state, (q, qd, qdd)) in states.iter_mut().zip(derivatives) {
+            state.0.push(q);
+            state.1.push(qd);
+            state.2.push(qdd);
         }
-        let mut tau = rnea(model, &mut data, &q, &qd, &qdd, &model.gravity, None).as_slice().to_vec();
-        if let Some(l) = loads {
-            l.subtract(model, &data, t, &mut tau);
-        }
-        if let Some(j) = tau.iter().position(|x| !x.is_finite()) {
-            let message =
-                format!("the torque of joint \"{}\" is not finite ({}): nothing written", model.joints[j + 1].name, tau[j]);
-            return Err(Error::input(origin, format!("sample {k} (t = {t} s)"), message));
-        }
-        samples.push(SampleRecord { t, q, qd, qdd, tau, contact_forces: Vec::new() });
     }
-    Ok(samples)
+    Ok(states)
 }
 
 /// The samples as a plan's record (no control points, no contacts), for the plan reports.
-fn record_of(model: &Model, samples: Vec<SampleRecord>) -> PlanRecord {
+pub(super) fn record_of(model: &Model, samples: Vec<SampleRecord>) -> PlanRecord {
     let duration = samples.last().map_or(0.0, |s| s.t) - samples.first().map_or(0.0, |s| s.t);
     let g = model.gravity;
     PlanRecord {
@@ -176,7 +237,7 @@ fn record_of(model: &Model, samples: Vec<SampleRecord>) -> PlanRecord {
 }
 
 /// An error of a step (the filter, a spline) made to name the motion's file.
-fn relabel(e: Error, origin: &str) -> Error {
+pub(super) fn relabel(e: Error, origin: &str) -> Error {
     match e {
         Error::Input { field, message, .. } => Error::input(origin, field, message),
         other => other,

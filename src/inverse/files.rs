@@ -4,11 +4,12 @@
 //! `trajectory.csv`), `q_filtered.mot` (the processed motion, degrees), `joint_loads.csv`, `summary.json`
 //! (the settings and the ergonomic report) and, unless left out, the plots of a plan.
 
-use super::driver::Inverse;
+use super::driver::{Inverse, Spline};
 use crate::model::Model;
 use crate::report::ergonomics::{self, Ergonomics};
 use crate::report::export::{csv::csv, mot};
 use crate::report::plots;
+use crate::report::record::PlanRecord;
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -38,6 +39,9 @@ pub struct InverseSummary {
     pub filter: Option<FilterSummary>,
     /// How `q̇` and `q̈` were obtained.
     pub derivatives: &'static str,
+    /// Whose generalized forces the `.sto` holds: the model's joints, or a coupled OpenSim model's
+    /// coordinates (`τ = Gᵀ τ_chain`; `joint_loads.csv` is then of the chain's joints).
+    pub forces_of: &'static str,
     /// Gravity (m/s², world axes).
     pub gravity: [f64; 3],
     /// Per joint: peak |τ|, when, work and power; the strength shares where the model has limits.
@@ -53,12 +57,18 @@ pub struct FilterSummary {
     pub cutoff_hz: f64,
 }
 
-/// The summary of `inverse` of `motion` on `model`.
-pub fn summary(model: &Model, inverse: &Inverse, motion: &str, loads: Option<String>) -> crate::Result<InverseSummary> {
+/// The summary of `inverse` of `motion` on `model` (the coordinates' table of a coupled model, whose
+/// chain is `chain`).
+pub fn summary(
+    model: &Model,
+    chain: Option<&Model>,
+    inverse: &Inverse,
+    motion: &str,
+    loads: Option<String>,
+) -> crate::Result<InverseSummary> {
     let r = &inverse.record;
     let span = [r.samples.first().map_or(0.0, |s| s.t), r.samples.last().map_or(0.0, |s| s.t)];
     let loads_given = loads.is_some();
-    let kind = "zero-lag 4th-order Butterworth low-pass (2nd order run forward and backward), odd-reflection padding";
     Ok(InverseSummary {
         format: SUMMARY_FORMAT,
         model: model.name.clone(),
@@ -68,28 +78,60 @@ pub fn summary(model: &Model, inverse: &Inverse, motion: &str, loads: Option<Str
         rate_hz: inverse.rate_hz,
         samples: r.samples.len(),
         time_span_s: span,
-        filter: inverse.settings.filter_hz.map(|cutoff_hz| FilterSummary { kind, cutoff_hz }),
-        derivatives: "not-a-knot cubic interpolating spline through the (filtered) samples",
+        filter: inverse
+            .settings
+            .filter_hz
+            .map(|cutoff_hz| FilterSummary { kind: filter_kind(inverse.settings.spline), cutoff_hz }),
+        derivatives: match inverse.settings.spline {
+            Spline::Interpolating => "not-a-knot cubic interpolating spline through the (filtered) samples",
+            Spline::Smoothing => "quintic smoothing spline, smoothing parameter of the cutoff (the Nyquist frequency unfiltered)",
+        },
+        forces_of: if inverse.chain.is_some() { "coordinates (coupled model: Gᵀ τ_chain)" } else { "joints" },
         gravity: r.gravity,
-        ergonomics: report(model, r, loads_given)?,
+        ergonomics: report(model, r, chained(model, chain, inverse), loads_given)?,
     })
 }
 
-/// The ergonomic report of the processed motion, with the L5/S1 load of the joint named `lumbar` when
-/// the model has one (as the planner's default) and no external loads act (the joint loads are computed
-/// without them).
-fn report(model: &Model, r: &crate::report::record::PlanRecord, loads_given: bool) -> crate::Result<Ergonomics> {
-    let mut report = ergonomics::ergonomics(model, r, &BTreeMap::new())?;
-    if let (Some(lumbar), false) = (model.dof_index("lumbar"), loads_given) {
-        let series = ergonomics::loads::series(model, r, &[])?;
-        report.low_back = Some(ergonomics::lumbar::low_back(model, r, &series, lumbar));
+/// What the low-pass filter is, by the spline that carries it.
+fn filter_kind(spline: Spline) -> &'static str {
+    match spline {
+        Spline::Interpolating => {
+            "zero-lag 4th-order Butterworth low-pass (2nd order run forward and backward), odd-reflection padding"
+        }
+        Spline::Smoothing => "quintic smoothing spline, zero-lag gain 1/(1 + (f/f2)^6), -3 dB at the cutoff",
+    }
+}
+
+/// The model and record the joint loads are of: a coupled model's chain, otherwise the model's own.
+fn chained<'a>(model: &'a Model, chain: Option<&'a Model>, inverse: &'a Inverse) -> (&'a Model, &'a PlanRecord) {
+    match (chain, &inverse.chain) {
+        (Some(m), Some(r)) => (m, r),
+        _ => (model, &inverse.record),
+    }
+}
+
+/// The ergonomic report of the processed motion (per joint or coordinate of `model`), with the L5/S1
+/// load of the joint named `lumbar` when the chain has one (as the planner's default) and no external
+/// loads act (the joint loads are computed without them).
+fn report(
+    model: &Model,
+    record: &PlanRecord,
+    (chain, chain_record): (&Model, &PlanRecord),
+    loads_given: bool,
+) -> crate::Result<Ergonomics> {
+    let mut report = ergonomics::ergonomics(model, record, &BTreeMap::new())?;
+    if let (Some(lumbar), false) = (chain.dof_index("lumbar"), loads_given) {
+        let series = ergonomics::loads::series(chain, chain_record, &[])?;
+        report.low_back = Some(ergonomics::lumbar::low_back(chain, chain_record, &series, lumbar));
     }
     Ok(report)
 }
 
-/// Every file of the output directory but the manifest, by name; the plots unless `no_plots`.
+/// Every file of the output directory but the manifest, by name; the plots unless `no_plots`. `model`
+/// names the record's joints (a coupled model's coordinates, its chain `chain`).
 pub fn render(
     model: &Model,
+    chain: Option<&Model>,
     inverse: &Inverse,
     summary: &InverseSummary,
     no_plots: bool,
@@ -99,15 +141,16 @@ pub fn render(
     files.insert("inverse_dynamics.sto".to_string(), mot::torques_sto(model, r).into_bytes());
     files.insert("inverse_dynamics.csv".to_string(), csv(model, r, &Default::default())?.into_bytes());
     files.insert("q_filtered.mot".to_string(), mot::mot(model, r).into_bytes());
-    let loads = ergonomics::loads::series(model, r, &[])?;
-    files.insert("joint_loads.csv".to_string(), ergonomics::loads::csv(model, r, &loads).into_bytes());
+    let (chain, chain_record) = chained(model, chain, inverse);
+    let loads = ergonomics::loads::series(chain, chain_record, &[])?;
+    files.insert("joint_loads.csv".to_string(), ergonomics::loads::csv(chain, chain_record, &loads).into_bytes());
     let mut text =
         serde_json::to_string_pretty(summary).map_err(|e| crate::Error::input("summary.json", "serialising", e.to_string()))?;
     text.push('\n');
     files.insert("summary.json".to_string(), text.into_bytes());
     if !no_plots {
         files.extend(plots::plots_labelled(model, r, None, "inverse dynamics")?);
-        files.extend(ergonomics::plots::plots(model, r, Some(&loads), &summary.ergonomics)?);
+        files.extend(ergonomics::plots::plots(chain, chain_record, Some(&loads), &summary.ergonomics)?);
     }
     Ok(files)
 }

@@ -3,6 +3,7 @@
 
 pub mod checks;
 pub mod cli;
+pub mod opensim;
 
 use std::path::PathBuf;
 

@@ -113,10 +113,17 @@ impl Coordinates {
         }
         let (qc, vc, ac) = self.chain_state(q, v, a)?;
         let tau_chain = rnea(model, data, &qc, &vc, &ac, &model.gravity, None);
+        self.generalized_forces(q, tau_chain.as_slice())
+    }
+
+    /// The coordinates' generalized forces of the chain's (N·m or N) by virtual work: `τ = Gᵀ τ_chain`;
+    /// an error naming the coordinate where one is not finite.
+    pub fn generalized_forces(&self, q: &[f64], tau_chain: &[f64]) -> Result<Vec<f64>> {
+        self.check_len(q, "q")?;
         // τ_c = Σ_k G_kc τ_chain,k (G has one entry per chain DOF).
         let mut tau = vec![0.0; self.len()];
-        for (k, d) in self.chain.iter().enumerate() {
-            tau[d.coordinate] += d.function.eval(q[d.coordinate]).1 * tau_chain[k];
+        for (d, t) in self.chain.iter().zip(tau_chain) {
+            tau[d.coordinate] += d.function.eval(q[d.coordinate]).1 * t;
         }
         match tau.iter().position(|t| !t.is_finite()) {
             Some(c) => Err(Error::input(
@@ -126,6 +133,15 @@ impl Coordinates {
             )),
             None => Ok(tau),
         }
+    }
+
+    /// Whether coordinate `c` is rotational (OpenSim's motion type: it drives a rotation of the chain),
+    /// so a Storage file's `inDegrees` applies to it; otherwise translational (m).
+    pub fn is_rotational(&self, model: &Model, c: usize) -> bool {
+        self.chain
+            .iter()
+            .enumerate()
+            .any(|(k, d)| d.coordinate == c && model.joints[k + 1].kind != crate::model::JointKind::Prismatic)
     }
 
     fn check_len(&self, x: &[f64], what: &str) -> Result<()> {
