@@ -7,6 +7,7 @@
 //! against the model, one section at a time ([`resolve`]), and the planner's own validation.
 
 mod check;
+mod figure;
 mod goals;
 mod guess;
 mod overrides;
