@@ -2,7 +2,7 @@
 //! joint's strength, green → yellow → red) and the marks the strip draws (contact forces, the support
 //! region, obstacles, collision capsules), each only where the strip has them.
 
-use super::{Layout, Pose, Scenery, COLLISION, FONT, FORCE, OBSTACLE, PAD, SUPPORT};
+use super::{Layout, Pose, Scenery, COLLISION, FONT, FORCE, OBSTACLE, PAD, SUPPORT, ZONE_DASH};
 use crate::report::scene::load_colour;
 use std::fmt::Write as _;
 
@@ -49,8 +49,11 @@ fn marks(poses: &[Pose], scenery: &Scenery) -> Vec<(&'static str, String)> {
     if scenery.support.is_some() {
         marks.push(("support region", format!(r#"stroke="{SUPPORT}" stroke-width="4" stroke-opacity="0.7""#)));
     }
-    if !scenery.obstacles.is_empty() || !scenery.planes.is_empty() {
+    if !scenery.obstacles.is_empty() || scenery.planes.iter().any(|p| !p.2) {
         marks.push(("obstacle", format!(r#"stroke="{OBSTACLE}" stroke-width="3""#)));
+    }
+    if !scenery.zones.is_empty() || scenery.planes.iter().any(|p| p.2) {
+        marks.push(("keep-out zone", format!(r#"stroke="{OBSTACLE}" stroke-width="2" stroke-dasharray="{ZONE_DASH}""#)));
     }
     if poses.iter().any(|p| !p.collision.is_empty()) {
         marks.push(("collision capsule", format!(r#"stroke="{COLLISION}" stroke-width="1" stroke-dasharray="3,2""#)));
