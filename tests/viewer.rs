@@ -462,6 +462,19 @@ fn a_keep_out_zone_is_drawn_dashed_without_fill_and_a_solid_filled() {
     assert_eq!(polygons_with(&svg, &solid), 2 * frames);
     assert_eq!(polygons_with(&svg, &[r#"class="zone""#]), 0);
     assert!(!svg.contains("keep-out zone"));
+
+    // A strip narrower than the legend wraps it into rows: every label starts inside the picture, and
+    // the picture is taller by the rows added.
+    rec.obstacles[1].zone = true;
+    let narrow = filmstrip_svg(&model, &rec, 6, View::Front);
+    let width = attr(&narrow, "width").unwrap();
+    let legend = narrow.split("<g class=\"legend\"").nth(1).unwrap();
+    let labels: Vec<(f64, f64)> =
+        legend.lines().filter(|l| l.starts_with("<text")).map(|l| (attr(l, "x").unwrap(), attr(l, "y").unwrap())).collect();
+    assert!(legend.contains(">keep-out zone<") && labels.iter().all(|(x, _)| *x < width - 40.0), "{labels:?} in {width}");
+    let rows = labels.iter().map(|(_, y)| y.round() as i64).collect::<std::collections::BTreeSet<_>>().len();
+    assert!(rows > 1, "one legend row in a strip {width} px wide");
+    assert!(attr(&narrow, "height").unwrap() > labels.iter().map(|l| l.1).fold(0.0, f64::max));
 }
 
 #[test]

@@ -19,7 +19,10 @@ impl Layout {
     ) -> String {
         let rows = poses.len().div_ceil(self.columns);
         let width = self.panel_w * self.columns.min(poses.len()) as f64;
-        let height = HEADER + rows as f64 * self.panel_h() + LEGEND;
+        // The legend first: its rows set the height.
+        let mut legend = String::new();
+        let legend_rows = self.legend(&mut legend, HEADER + rows as f64 * self.panel_h() + 4.0, width, poses, scenery);
+        let height = HEADER + rows as f64 * self.panel_h() + LEGEND * legend_rows as f64;
         let mut s = String::new();
         let _ = writeln!(
             s,
@@ -44,7 +47,7 @@ impl Layout {
         for (k, pose) in poses.iter().enumerate() {
             self.frame(&mut s, k, pose, scenery, per_newton, decimals);
         }
-        self.legend(&mut s, HEADER + rows as f64 * self.panel_h() + 4.0, poses, scenery);
+        s.push_str(&legend);
         s.push_str("</svg>\n");
         s
     }
