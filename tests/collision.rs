@@ -44,7 +44,7 @@ fn obstacles() -> Vec<Obstacle> {
             half: Vec3::new(0.2, 0.1, 0.15),
         },
     ];
-    shapes.into_iter().enumerate().map(|(k, shape)| Obstacle { name: format!("o{k}"), shape }).collect()
+    shapes.into_iter().enumerate().map(|(k, shape)| Obstacle { name: format!("o{k}"), shape, zone: false }).collect()
 }
 
 /// `min_t sd(a + t(b − a)) − r` by sampling `t` finely.

@@ -131,3 +131,13 @@ fn locking_joints_and_the_reference_posture() {
     assert_mentions(&GOOD.replace("[motion]", "lock = { knee = 0.0 }\n[motion]"), &["model.lock.knee", "no joint"]);
     assert_mentions(&GOOD.replace("duration = 1.5", "duration = 1.5\nbase = \"reference\""), &["motion.base", "built-in human"]);
 }
+
+#[test]
+fn an_obstacle_takes_zone_and_refuses_a_misspelling_of_it() {
+    let obstacle =
+        "[[environment.obstacle]]\nname = \"z\"\ntype = \"box\"\ncentre = [0.0, 0.0, 0.0]\nhalf_size = [0.1, 0.1, 0.1]\n";
+    let zone = Task::parse(&format!("{GOOD}{obstacle}zone = true\n"), &path()).unwrap();
+    assert!(zone.spec.obstacles[0].zone);
+    assert!(!Task::parse(&format!("{GOOD}{obstacle}"), &path()).unwrap().spec.obstacles[0].zone);
+    assert_mentions(&format!("{GOOD}{obstacle}zones = true\n"), &["environment.obstacle", "zones", "unknown field"]);
+}

@@ -83,10 +83,15 @@ fn random_spec(seed: u64, n: usize, zero_end_velocity: bool) -> Spec {
     spec.loads = vec![PointLoad { frame: grip_f, force: Vec3::new(3.0, -2.0, -20.0) }];
     spec.gravity = Vec3::new(0.0, 0.0, -9.81);
     spec.obstacles = vec![
-        Obstacle { name: "floor".into(), shape: ObstacleShape::Plane { point: Vec3::new(0.0, 0.0, -1.5), normal: Vec3::z() } },
+        Obstacle {
+            name: "floor".into(),
+            shape: ObstacleShape::Plane { point: Vec3::new(0.0, 0.0, -1.5), normal: Vec3::z() },
+            zone: false,
+        },
         Obstacle {
             name: "bar".into(),
             shape: ObstacleShape::Cylinder { point: Vec3::new(0.2, 0.0, -1.0), direction: Vec3::y(), radius: 0.02, length: None },
+            zone: false,
         },
     ];
     for b in 1..=n {

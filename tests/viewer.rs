@@ -8,6 +8,7 @@ use mintorque::model::{urdf, Model};
 use mintorque::plan_dir::{self, PlanContents, WriteOptions};
 use mintorque::report::filmstrip::{filmstrip_png, filmstrip_svg, needs_front_view, View};
 use mintorque::report::record::{ContactRecord, PlanRecord, SampleRecord, FORMAT};
+use mintorque::report::solids::ObstacleRecord;
 use mintorque::report::viewer::{embedded_data, file_url, motion_html, VIEW_FILES};
 use std::path::{Path, PathBuf};
 
@@ -419,4 +420,74 @@ fn views_parse_and_paths_become_file_urls() {
     assert_eq!("top".parse::<View>(), Ok(View::Top));
     assert!("oblique".parse::<View>().unwrap_err().contains("side, front or top"));
     assert_eq!(file_url(Path::new("/tmp/a plan/motion.html")), "file:///tmp/a%20plan/motion.html");
+}
+
+// ---- Keep-out zones ----
+
+/// A box obstacle 0.6 m across in front of the human's hips, as `plan.json` records it.
+fn box_record(name: &str, x: f64, zone: bool) -> ObstacleRecord {
+    ObstacleRecord {
+        name: name.into(),
+        kind: "box".into(),
+        point: [x, 0.0, 0.5],
+        axis: [0.0; 3],
+        radius: None,
+        length: None,
+        half_size: Some([0.1, 0.3, 0.3]),
+        axes: Some([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]),
+        zone,
+    }
+}
+
+/// The `<polygon …/>` elements of `svg` whose attributes contain every one of `parts`.
+fn polygons_with(svg: &str, parts: &[&str]) -> usize {
+    svg.lines().filter(|l| l.trim_start().starts_with("<polygon") && parts.iter().all(|p| l.contains(p))).count()
+}
+
+#[test]
+fn a_keep_out_zone_is_drawn_dashed_without_fill_and_a_solid_filled() {
+    let (model, mut rec) = human_record();
+    let frames = 3;
+    rec.obstacles = vec![box_record("crate", 0.4, false), box_record("behind", -0.3, true)];
+    let svg = filmstrip_svg(&model, &rec, frames, View::Side);
+    let solid = [r##"fill="#b08d5b""##];
+    let zone = [r#"class="zone""#, r#"fill="none""#, "stroke-dasharray"];
+    assert_eq!(polygons_with(&svg, &solid), frames, "the crate, filled, once a frame");
+    assert_eq!(polygons_with(&svg, &zone), frames, "the zone, dashed and unfilled, once a frame");
+    assert!(svg.contains(">obstacle<") && svg.contains(">keep-out zone<"), "both in the legend");
+
+    // The opposite: both solid, so two filled boxes a frame and no zone anywhere.
+    rec.obstacles[1].zone = false;
+    let svg = filmstrip_svg(&model, &rec, frames, View::Side);
+    assert_eq!(polygons_with(&svg, &solid), 2 * frames);
+    assert_eq!(polygons_with(&svg, &[r#"class="zone""#]), 0);
+    assert!(!svg.contains("keep-out zone"));
+
+    // A strip narrower than the legend wraps it into rows: every label starts inside the picture, and
+    // the picture is taller by the rows added.
+    rec.obstacles[1].zone = true;
+    let narrow = filmstrip_svg(&model, &rec, 6, View::Front);
+    let width = attr(&narrow, "width").unwrap();
+    let legend = narrow.split("<g class=\"legend\"").nth(1).unwrap();
+    let labels: Vec<(f64, f64)> =
+        legend.lines().filter(|l| l.starts_with("<text")).map(|l| (attr(l, "x").unwrap(), attr(l, "y").unwrap())).collect();
+    assert!(legend.contains(">keep-out zone<") && labels.iter().all(|(x, _)| *x < width - 40.0), "{labels:?} in {width}");
+    let rows = labels.iter().map(|(_, y)| y.round() as i64).collect::<std::collections::BTreeSet<_>>().len();
+    assert!(rows > 1, "one legend row in a strip {width} px wide");
+    assert!(attr(&narrow, "height").unwrap() > labels.iter().map(|l| l.1).fold(0.0, f64::max));
+}
+
+#[test]
+fn the_viewer_gets_the_zone_flag_and_old_records_load_as_solids() {
+    let (model, mut rec) = human_record();
+    rec.obstacles = vec![box_record("crate", 0.4, false), box_record("behind", -0.3, true)];
+    let html = motion_html(&model, &rec, None);
+    let data = embedded_data(&html).unwrap();
+    let zones: Vec<bool> = data["obstacles"].as_array().unwrap().iter().map(|o| o["zone"].as_bool().unwrap()).collect();
+    assert_eq!(zones, [false, true]);
+    assert!(html.contains("o.zone ? zoneMesh(o.shape)"), "the page draws a zone by its edges");
+    // A plan.json written before the field: the obstacle is a solid.
+    let mut old = serde_json::to_value(box_record("crate", 0.4, true)).unwrap();
+    old.as_object_mut().unwrap().remove("zone");
+    assert!(!serde_json::from_value::<ObstacleRecord>(old).unwrap().zone);
 }

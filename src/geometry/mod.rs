@@ -72,6 +72,8 @@ pub struct Obstacle {
     pub name: String,
     /// Where it is and what it is.
     pub shape: ObstacleShape,
+    /// A keep-out zone rather than a solid: planned alike, drawn as an outline only.
+    pub zone: bool,
 }
 
 /// The result of a distance query: the signed distance and where it is attained.

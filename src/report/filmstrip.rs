@@ -37,6 +37,8 @@ const FORCE: &str = "#d0302a";
 const SUPPORT: &str = "#2a7de1";
 const OBSTACLE: &str = "#b08d5b";
 const COLLISION: &str = "#d0302a";
+/// The dash pattern of a keep-out zone's outline (px).
+const ZONE_DASH: &str = "8,5";
 
 /// One thing to draw, in screen metres (right, up), before scaling.
 #[derive(Clone, Debug)]
@@ -229,6 +231,8 @@ struct Scenery {
     targets: Vec<[f64; 2]>,
     /// Bars and boxes as outlines.
     obstacles: Vec<Prim>,
+    /// Keep-out zones (bars and boxes), dashed outlines without fill.
+    zones: Vec<Prim>,
     /// Planes seen edge-on: a point on the line and the line's direction (screen).
     planes: Vec<solids::EdgeOn>,
 }
@@ -241,9 +245,9 @@ fn scenery(model: &Model, record: &PlanRecord, view: View) -> Scenery {
         View::Front => Prim::Stick([y0, 0.0], [y1, 0.0]),
     });
     let targets = record.contacts.iter().map(|c| view.project(&Vec3::from(c.target)).0).collect();
-    let (obstacles, planes) = solids::scenery(record, view);
+    let (obstacles, zones, planes) = solids::scenery(record, view);
     let ground = (view != View::Top && !model.is_free_floating()).then_some(0.0);
-    Scenery { ground, support, targets, obstacles, planes }
+    Scenery { ground, support, targets, obstacles, zones, planes }
 }
 
 /// Where the panels go: one common scale, every pose's panel as large as the union of all of them, in one
@@ -271,7 +275,7 @@ impl Layout {
         }
         scenery.support.iter().for_each(|p| grow(p.bounds()));
         scenery.targets.iter().for_each(|p| grow([p[0], p[1], p[0], p[1]]));
-        scenery.obstacles.iter().for_each(|p| grow(p.bounds()));
+        scenery.obstacles.iter().chain(&scenery.zones).for_each(|p| grow(p.bounds()));
         if !b[0].is_finite() {
             b = [-0.5, -0.5, 0.5, 0.5];
         }

@@ -2,7 +2,7 @@
 //! off them, as `plan.json` records them, and as drawing shapes (world frame for obstacles, body frame for
 //! capsules) the filmstrip and the 3D view draw.
 
-use crate::geometry::ObstacleShape;
+use crate::geometry::{Obstacle, ObstacleShape};
 use crate::model::Shape;
 use crate::plan::{Collider, Spec};
 use crate::spatial::{rotation_from_z, Mat3, Transform, Vec3};
@@ -31,6 +31,9 @@ pub struct ObstacleRecord {
     pub half_size: Option<[f64; 3]>,
     /// Box: its axes in the world, as the rows of `Rᵀ` (the columns of `R`).
     pub axes: Option<[[f64; 3]; 3]>,
+    /// A keep-out zone, drawn as an outline only (absent in older files: a solid).
+    #[serde(default)]
+    pub zone: bool,
 }
 
 /// A collision capsule of a body, body frame (m).
@@ -52,8 +55,8 @@ fn arr(v: &Vec3) -> [f64; 3] {
 
 /// The spec's obstacles, as recorded.
 pub fn obstacle_records(spec: &Spec) -> Vec<ObstacleRecord> {
-    let record = |name: &str, kind: &str, point: &Vec3, axis: Vec3| ObstacleRecord {
-        name: name.to_string(),
+    let record = |o: &Obstacle, kind: &str, point: &Vec3, axis: Vec3| ObstacleRecord {
+        name: o.name.clone(),
         kind: kind.to_string(),
         point: arr(point),
         axis: arr(&axis),
@@ -61,17 +64,18 @@ pub fn obstacle_records(spec: &Spec) -> Vec<ObstacleRecord> {
         length: None,
         half_size: None,
         axes: None,
+        zone: o.zone,
     };
     let obstacles = spec.obstacles.iter();
     obstacles
         .map(|o| match &o.shape {
-            ObstacleShape::Plane { point, normal } => record(&o.name, "plane", point, *normal),
+            ObstacleShape::Plane { point, normal } => record(o, "plane", point, *normal),
             ObstacleShape::Cylinder { point, direction, radius, length } => {
-                ObstacleRecord { radius: Some(*radius), length: *length, ..record(&o.name, "cylinder", point, *direction) }
+                ObstacleRecord { radius: Some(*radius), length: *length, ..record(o, "cylinder", point, *direction) }
             }
             ObstacleShape::Box { centre, rotation, half } => {
                 let axes = [0, 1, 2].map(|i| arr(&rotation.column(i).into_owned()));
-                ObstacleRecord { half_size: Some(arr(half)), axes: Some(axes), ..record(&o.name, "box", centre, Vec3::zeros()) }
+                ObstacleRecord { half_size: Some(arr(half)), axes: Some(axes), ..record(o, "box", centre, Vec3::zeros()) }
             }
         })
         .collect()

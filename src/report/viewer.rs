@@ -111,7 +111,7 @@ pub fn scene_json(model: &Model, record: &PlanRecord, summary: Value) -> Value {
         "contacts": record.contacts,
         "support": record.support,
         "obstacles": record.obstacles.iter().map(|o| json!({
-            "name": o.name, "kind": o.kind, "point": o.point, "normal": o.axis,
+            "name": o.name, "kind": o.kind, "point": o.point, "normal": o.axis, "zone": o.zone,
             "shape": o.drawing_shape().as_ref().map(shape_json),
         })).collect::<Vec<_>>(),
         "collision": model.bodies.iter().map(|b| record.collision_shapes.iter().filter(|c| c.body == b.name)

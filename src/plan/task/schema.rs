@@ -665,6 +665,9 @@ pub struct ObstacleSpec {
     /// Box: rotation of its axes from the world's, about world x, then y, then z (degrees); default none.
     #[serde(default, deserialize_with = "exact::option")]
     pub rotation: Option<[f64; 3]>,
+    /// A keep-out zone, not a solid: the same collision rows, drawn as a dashed outline without fill.
+    #[serde(default)]
+    pub zone: bool,
 }
 
 /// A `[[constraints.collision]]`: every listed body at least `margin` from every listed obstacle, or

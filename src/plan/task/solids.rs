@@ -18,7 +18,7 @@ pub(super) fn obstacles(specs: &[ObstacleSpec], origin: &str) -> Result<Vec<Obst
         if out.iter().any(|p| p.name == o.name) {
             return Err(Error::task(origin, format!("{field}.name"), format!("a second obstacle named \"{}\"", o.name)));
         }
-        out.push(Obstacle { name: o.name.clone(), shape: shape(o, &field, origin)? });
+        out.push(Obstacle { name: o.name.clone(), shape: shape(o, &field, origin)?, zone: o.zone });
     }
     Ok(out)
 }

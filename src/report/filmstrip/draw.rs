@@ -19,7 +19,10 @@ impl Layout {
     ) -> String {
         let rows = poses.len().div_ceil(self.columns);
         let width = self.panel_w * self.columns.min(poses.len()) as f64;
-        let height = HEADER + rows as f64 * self.panel_h() + LEGEND;
+        // The legend first: its rows set the height.
+        let mut legend = String::new();
+        let legend_rows = self.legend(&mut legend, HEADER + rows as f64 * self.panel_h() + 4.0, width, poses, scenery);
+        let height = HEADER + rows as f64 * self.panel_h() + LEGEND * legend_rows as f64;
         let mut s = String::new();
         let _ = writeln!(
             s,
@@ -44,7 +47,7 @@ impl Layout {
         for (k, pose) in poses.iter().enumerate() {
             self.frame(&mut s, k, pose, scenery, per_newton, decimals);
         }
-        self.legend(&mut s, HEADER + rows as f64 * self.panel_h() + 4.0, poses, scenery);
+        s.push_str(&legend);
         s.push_str("</svg>\n");
         s
     }
@@ -78,9 +81,7 @@ impl Layout {
             let _ =
                 writeln!(s, r#"<path d="M{:.2},{:.2}l8,8m0,-8l-8,8" stroke="{FORCE}" stroke-width="1.5"/>"#, x - 4.0, y - 4.0);
         }
-        for (at, along) in &scenery.planes {
-            self.plane(s, k, at, along);
-        }
+        scenery.planes.iter().for_each(|p| self.plane(s, k, p));
         for p in &pose.parts {
             self.part(s, k, p);
         }
@@ -98,6 +99,7 @@ impl Layout {
         // Obstacles last: a bar the hands hold shows over them and their joint markers.
         let _ = writeln!(s, r#"<g class="obstacle">"#);
         scenery.obstacles.iter().for_each(|p| self.obstacle(s, k, p));
+        scenery.zones.iter().for_each(|p| self.zone(s, k, p));
         s.push_str("</g>\n");
         let _ = writeln!(
             s,
@@ -175,7 +177,7 @@ impl Layout {
         }
     }
 
-    fn points(&self, k: usize, pts: &[[f64; 2]]) -> String {
+    pub(super) fn points(&self, k: usize, pts: &[[f64; 2]]) -> String {
         pts.iter().map(|p| self.px(k, p)).map(|[x, y]| format!("{x:.2},{y:.2}")).collect::<Vec<_>>().join(" ")
     }
 

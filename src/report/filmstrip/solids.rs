@@ -1,19 +1,21 @@
-//! The filmstrip's solids: obstacles (bars and boxes as outlines to scale, planes edge-on as lines) and the
-//! dashed outlines of the collision capsules.
+//! The filmstrip's solids: obstacles (bars and boxes as outlines to scale, planes edge-on as lines; keep-out
+//! zones dashed, without fill) and the dashed outlines of the collision capsules.
 
-use super::{shape_prim, Layout, Prim, COLLISION, OBSTACLE};
+use super::{shape_prim, Layout, Prim, COLLISION, OBSTACLE, ZONE_DASH};
 use crate::plan::task::View;
 use crate::report::record::PlanRecord;
 use crate::spatial::Vec3;
 use std::fmt::Write as _;
 
-/// A plane seen edge-on: a point on its line and the line's direction (screen).
-pub(super) type EdgeOn = ([f64; 2], [f64; 2]);
+/// A plane seen edge-on: a point on its line, the line's direction (screen), and whether it bounds a zone.
+pub(super) type EdgeOn = ([f64; 2], [f64; 2], bool);
 
-/// The obstacles' outlines, and the planes seen edge-on.
-pub(super) fn scenery(record: &PlanRecord, view: View) -> (Vec<Prim>, Vec<EdgeOn>) {
-    let obstacles: Vec<Prim> =
-        record.obstacles.iter().filter_map(|o| o.drawing_shape()).map(|s| shape_prim(&s, view).1).collect();
+/// The solid obstacles' outlines, the keep-out zones' outlines, and the planes seen edge-on.
+pub(super) fn scenery(record: &PlanRecord, view: View) -> (Vec<Prim>, Vec<Prim>, Vec<EdgeOn>) {
+    let outlines = |zone: bool| -> Vec<Prim> {
+        let drawn = record.obstacles.iter().filter(|o| o.zone == zone).filter_map(|o| o.drawing_shape());
+        drawn.map(|s| shape_prim(&s, view).1).collect()
+    };
     // A plane shows as a line when its normal lies mostly in the picture: the line runs across the normal.
     let planes: Vec<EdgeOn> = record
         .obstacles
@@ -21,22 +23,34 @@ pub(super) fn scenery(record: &PlanRecord, view: View) -> (Vec<Prim>, Vec<EdgeOn
         .filter(|o| o.kind == "plane")
         .filter_map(|o| {
             let (n, _) = view.project(&Vec3::from(o.axis));
-            (n[0].hypot(n[1]) > 0.5).then(|| (view.project(&Vec3::from(o.point)).0, [-n[1], n[0]]))
+            (n[0].hypot(n[1]) > 0.5).then(|| (view.project(&Vec3::from(o.point)).0, [-n[1], n[0]], o.zone))
         })
         .collect();
-    (obstacles, planes)
+    (outlines(false), outlines(true), planes)
 }
 
 impl Layout {
-    /// A plane seen edge-on: a line through `at` along `along`, across the drawn region.
-    pub(super) fn plane(&self, s: &mut String, k: usize, at: &[f64; 2], along: &[f64; 2]) {
+    /// A plane seen edge-on: a line through `at` along `along`, across the drawn region (dashed for a zone).
+    pub(super) fn plane(&self, s: &mut String, k: usize, (at, along, zone): &EdgeOn) {
         let reach = (self.bounds[2] - self.bounds[0]).max(self.bounds[3] - self.bounds[1]);
         let clip = |p: [f64; 2]| [p[0].clamp(self.bounds[0], self.bounds[2]), p[1].clamp(self.bounds[1], self.bounds[3])];
         let end = |sign: f64| clip([at[0] + sign * reach * along[0], at[1] + sign * reach * along[1]]);
         let ([ax, ay], [bx, by]) = (self.px(k, &end(-1.0)), self.px(k, &end(1.0)));
+        let (class, dash) =
+            if *zone { ("zone", format!(r#" stroke-dasharray="{ZONE_DASH}""#)) } else { ("obstacle", String::new()) };
         let _ = writeln!(
             s,
-            r#"<line class="obstacle" x1="{ax:.2}" y1="{ay:.2}" x2="{bx:.2}" y2="{by:.2}" stroke="{OBSTACLE}" stroke-width="3"/>"#
+            r#"<line class="{class}" x1="{ax:.2}" y1="{ay:.2}" x2="{bx:.2}" y2="{by:.2}" stroke="{OBSTACLE}" stroke-width="3"{dash}/>"#
+        );
+    }
+
+    /// A keep-out zone's outline to scale: dashed, without fill, so that what is inside shows through.
+    pub(super) fn zone(&self, s: &mut String, k: usize, p: &Prim) {
+        let Prim::Polygon(pts) = p else { return }; // a box or a cylinder seen orthographically
+        let _ = writeln!(
+            s,
+            r#"<polygon class="zone" points="{}" fill="none" stroke="{OBSTACLE}" stroke-width="2" stroke-dasharray="{ZONE_DASH}"/>"#,
+            self.points(k, pts)
         );
     }
 
