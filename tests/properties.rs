@@ -7,8 +7,10 @@
 mod common;
 
 use common::{random_tree, Rng};
-use mintorque::dynamics::{aba::aba, crba::crba, kinematics, rnea::rnea, rnea_derivatives::rnea_derivatives, Data};
-use mintorque::spatial::{Force, Vec3};
+use mintorque::dynamics::{
+    aba::aba, crba::crba, kinematics, rnea::rnea, rnea_derivatives::rnea_derivatives, rnea_gradient::rnea_gradient, Data,
+};
+use mintorque::spatial::{Force, Motion, Vec3};
 use mintorque::Model;
 use nalgebra::{DMatrix, DVector};
 use proptest::prelude::*;
@@ -78,6 +80,55 @@ proptest! {
         prop_assert!(e_q < 1e-6, "∂τ/∂q off by {e_q:e}");
         prop_assert!(e_v < 1e-6, "∂τ/∂q̇ off by {e_v:e}");
         prop_assert!(e_a < 1e-6, "∂τ/∂q̈ = H off by {e_a:e}");
+    }
+
+    /// The O(n) gradient of `φ = ωᵀτ + u₀·W` against central differences of `φ` itself (independent of the
+    /// derivative recursions) and against `ωᵀ∂τ + u₀·∂W` from `rnea_derivatives`' matrices.
+    #[test]
+    fn contracted_gradient_matches_finite_differences(seed in any::<u64>(), n in 1usize..=40) {
+        let model = random_tree(seed, n);
+        let mut data = Data::new(&model);
+        let (q, v, a) = state(seed, n);
+        let fext = random_fext(&model, seed);
+        let mut rng = Rng(seed ^ 0x77);
+        let omega = rng.vec(n, -1.0, 1.0);
+        let u = rng.vec(6, -1.0, 1.0);
+        let u0 = Motion::new(Vec3::new(u[0], u[1], u[2]), Vec3::new(u[3], u[4], u[5]));
+        let (mut g_q, mut g_v, mut g_a) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        rnea_gradient(&model, &mut data, (&q, &v, &a), &G, Some(&fext), &omega, &u0, (&mut g_q, &mut g_v, &mut g_a));
+        let tau = data.tau.clone();
+        let phi = |data: &mut Data, z: &[Vec<f64>; 3]| {
+            let t = rnea(&model, data, &z[0], &z[1], &z[2], &G, Some(&fext)).clone();
+            omega.iter().zip(t.iter()).map(|(w, t)| w * t).sum::<f64>() + u0.dot(&data.root_wrench)
+        };
+        let h = 1e-6;
+        let mut scale = 1.0f64;
+        let mut worst = 0.0f64;
+        for (wrt, g) in [&g_q, &g_v, &g_a].into_iter().enumerate() {
+            for k in 0..n {
+                let mut plus = [q.clone(), v.clone(), a.clone()];
+                let mut minus = plus.clone();
+                plus[wrt][k] += h;
+                minus[wrt][k] -= h;
+                let fd = (phi(&mut data, &plus) - phi(&mut data, &minus)) / (2.0 * h);
+                worst = worst.max((g[k] - fd).abs());
+                scale = scale.max(fd.abs());
+            }
+        }
+        prop_assert!(worst / scale < 1e-6, "∇φ off its central differences by {:e}", worst / scale);
+        rnea_derivatives(&model, &mut data, &q, &v, &a, &G, Some(&fext));
+        prop_assert!((&tau - &data.tau).amax() < 1e-9 * tau.amax().max(1.0));
+        let w = DVector::from_vec(omega.clone());
+        let contracted = [
+            data.dtau_dq.tr_mul(&w), data.dtau_dv.tr_mul(&w), data.M.tr_mul(&w),
+        ];
+        let wrench = [&data.dW_dq, &data.dW_dv, &data.dW_da];
+        for (wrt, g) in [&g_q, &g_v, &g_a].into_iter().enumerate() {
+            for k in 0..n {
+                let exact = contracted[wrt][k] + u0.dot(&wrench[wrt][k]);
+                prop_assert!((g[k] - exact).abs() <= 1e-10 * scale, "∂φ column {k} of block {wrt}: {} vs {exact}", g[k]);
+            }
+        }
     }
 
     #[test]

@@ -41,6 +41,12 @@ pub struct Data {
     pub p: Vec<Vec3>,
     /// `Aₖ = a_λ(k) × Sₖ + v_λ(k) × Ṡₖ`, the q-derivative seed of the acceleration recursion.
     pub A: Vec<Motion>,
+    /// `G_k = Σ_{i ⪰ k} ωᵢ YᵢSᵢ`, the subtree sum of the contracted gradient (rnea_gradient.rs).
+    pub G: Vec<Force>,
+    /// `β_k = Σ_{i ⪰ k} ωᵢ bᵢ` (rnea_gradient.rs).
+    pub beta: Vec<Vec3>,
+    /// `U_k = u₀ + Σ_{0 < j ≺ k} ωⱼSⱼ`, the ancestor sum of the contracted gradient (rnea_gradient.rs).
+    pub Uw: Vec<Motion>,
 
     // ---- articulated body algorithm (aba.rs) ----
     /// Articulated-body inertia `I^A_i` (world).
@@ -98,6 +104,9 @@ impl Data {
             B_ww: vec![Mat3::zeros(); nb],
             p: vec![Vec3::zeros(); nb],
             A: vec![Motion::ZERO; nb],
+            G: vec![Force::ZERO; nb],
+            beta: vec![Vec3::zeros(); nb],
+            Uw: vec![Motion::ZERO; nb],
             IA: vec![Mat6::zeros(); nb],
             pA: vec![Vec6::zeros(); nb],
             U: vec![Vec6::zeros(); nb],

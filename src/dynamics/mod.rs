@@ -18,5 +18,6 @@ pub mod kinematics;
 pub mod point_force;
 pub mod rnea;
 pub mod rnea_derivatives;
+pub mod rnea_gradient;
 
 pub use data::Data;

@@ -38,24 +38,12 @@ use crate::spatial::{skew, Force, Mat3, Motion, Vec3};
 /// `k` is the derivative of every strict ancestor's joint force, the root's included.
 pub fn rnea_derivatives(model: &Model, data: &mut Data, q: &[f64], v: &[f64], a: &[f64], gravity: &Vec3, fext: ExternalForces) {
     let nb = model.bodies.len();
+    check_sizes(model, q, v, a);
     placements(model, data, q);
     velocities(model, data, v);
     accelerations(model, data, v, a, gravity);
     body_forces(model, data, fext);
-    for i in 0..nb {
-        let parent = model.joints[i].parent;
-        if i > 0 {
-            data.A[i] = data.a[parent].cross(&data.S[i]) + data.v[parent].cross(&data.Sdot[i]);
-        }
-        let inertia = data.oI[i];
-        let momentum = inertia.mul(&data.v[i]);
-        let (w, u) = (data.v[i].w, data.v[i].v);
-        let t = skew(&w) * inertia.i_o;
-        data.B_ww[i] = t + t.transpose() - skew(&momentum.n) - inertia.h * u.transpose() - u * inertia.h.transpose()
-            + Mat3::identity() * (2.0 * u.dot(&inertia.h));
-        data.p[i] = momentum.f;
-        data.Y[i] = inertia;
-    }
+    body_seeds(model, data);
     for i in (1..nb).rev() {
         let (s_i, y_i, b_ww, p_i, f_i) = (data.S[i], data.Y[i], data.B_ww[i], data.p[i], data.f[i]);
         let b_times = |x: &Motion| Force::new(b_ww * x.w, -2.0 * p_i.cross(&x.w));
@@ -93,4 +81,36 @@ pub fn rnea_derivatives(model: &Model, data: &mut Data, q: &[f64], v: &[f64], a:
         data.f[parent] += f_i;
     }
     data.root_wrench = data.f[0];
+}
+
+/// Panics unless `q`, `v`, `a` each have `model.nv()` entries.
+pub(super) fn check_sizes(model: &Model, q: &[f64], v: &[f64], a: &[f64]) {
+    let nv = model.nv();
+    assert!(
+        q.len() == nv && v.len() == nv && a.len() == nv,
+        "q, q̇, q̈ need {nv} entries each, not {}, {}, {}",
+        q.len(),
+        v.len(),
+        a.len()
+    );
+}
+
+/// Each body's seeds of the derivative recursions after the forward pass: `Aᵢ = a_λ(i) × Sᵢ + v_λ(i) × Ṡᵢ`,
+/// `B_ww,ᵢ`, the linear momentum `pᵢ`, and `Yᵢ = Iᵢ` (made composite by the backward pass).
+pub(super) fn body_seeds(model: &Model, data: &mut Data) {
+    for i in 0..model.bodies.len() {
+        let parent = model.joints[i].parent;
+        if i > 0 {
+            data.A[i] = data.a[parent].cross(&data.S[i]) + data.v[parent].cross(&data.Sdot[i]);
+        }
+        let inertia = data.oI[i];
+        let momentum = inertia.mul(&data.v[i]);
+        let (w, u) = (data.v[i].w, data.v[i].v);
+        // B_ww = ω̃I_o + (ω̃I_o)ᵀ − ñ − h uᵀ − u hᵀ + 2(u·h)1
+        let t = skew(&w) * inertia.i_o;
+        data.B_ww[i] = t + t.transpose() - skew(&momentum.n) - inertia.h * u.transpose() - u * inertia.h.transpose()
+            + Mat3::identity() * (2.0 * u.dot(&inertia.h));
+        data.p[i] = momentum.f;
+        data.Y[i] = inertia;
+    }
 }

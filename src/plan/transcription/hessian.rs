@@ -9,9 +9,9 @@
 //!   φₖ(z, λ) = Σ_l ω_l τ_l(z, λ) + ω_W · W(z, λ),      ∇²_x(Σ wⱼcⱼ) = Σₖ Bₖᵀ ∇²φₖ Bₖ      (eq. 33)
 //! ```
 //!
-//! `Bₖ` the chain rule of eq. 33 (the four basis functions and their derivatives). `∇φₖ` is exact (the
-//! engine's `∂τ/∂q`, `∂τ/∂q̇`, `H`), and `∇²φₖ` is its forward difference along each `qᵢ` and `q̇ᵢ` — `2·nv`
-//! derivative passes at one node, not a whole evaluation — completed by structure: `τ` is linear in `q̈`
+//! `Bₖ` the chain rule of eq. 33 (the four basis functions and their derivatives). `∇φₖ` is exact and costs
+//! one O(nv) contracted pass of the engine (`node_gradient.rs`, `dynamics::rnea_gradient`), and `∇²φₖ` is its
+//! forward difference along each `qᵢ` and `q̇ᵢ` — `2·nv` such passes at one node — completed by structure: `τ` is linear in `q̈`
 //! and in `λ`, and `∂τ/∂q̈ = H(q)` does not depend on `q̇`, so `∂²φ/∂q̈² = ∂²φ/∂q̈∂q̇ = ∂²φ/∂λ² = ∂²φ/∂λ∂q̇ = 0`
 //! and the remaining blocks follow by symmetry from the `q` and `q̇` columns. The loop closures
 //! `Φ = Eᵀ(p(q) − target)` at the contact nodes add `Σ w_h ∇²Φ`, the difference of the point Jacobians
@@ -20,7 +20,7 @@
 //! task-space goals' rows (`goals.rs`) the same way at their times. Position limits and contact-force signs
 //! are linear and add nothing.
 
-use super::constraints::{balance_coefficients, dot6};
+use super::constraints::balance_coefficients;
 use super::{IneqRow, Transcription};
 use crate::dynamics::{kinematics, point_force::point_jacobian};
 use crate::solve::SymmetricMatrix;
@@ -49,11 +49,11 @@ pub(super) struct HessianWork {
     pub(super) rho: Vec<f64>,
     pub(super) positive: Vec<bool>,
     pub(super) sigma: [Vec<f64>; 2],
-    omega_w: [f64; 6],
+    pub(super) omega_w: [f64; 6],
     /// The node's unknowns: global column, and up to three (z index, coefficient) pairs.
     local: Vec<LocalUnknown>,
-    /// Set during the term's passes: `eval_state` then skips the objective's residual rows.
-    pub(super) torques_only: bool,
+    /// `ω̂ = ω + ρ f(q, q̇)`, the torques' weights at the state of a pass (`node_gradient.rs`).
+    pub(super) omega_hat: Vec<f64>,
 }
 
 impl HessianWork {
@@ -70,7 +70,7 @@ impl HessianWork {
             sigma: [vec![0.0; nv], vec![0.0; nv]],
             omega_w: [0.0; 6],
             local: Vec::with_capacity(4 * (nv + nl)),
-            torques_only: false,
+            omega_hat: vec![0.0; nv],
         }
     }
 }
@@ -165,50 +165,12 @@ impl Transcription<'_> {
         h.omega.iter().chain(&h.omega_w).chain(&h.rho).any(|v| *v != 0.0)
     }
 
-    /// `∇φ` at the state in `self.work` (after `eval_state(true)`) into `out`: `[∂/∂q, ∂/∂q̇, ∂/∂q̈, ∂/∂λ̃]`.
-    fn node_gradient(&self, out: &mut [f64]) {
-        let (nv, nl) = (self.layout.nv, self.layout.n_lambda);
-        let (w, h) = (&self.work, &self.hess);
-        out.fill(0.0);
-        for (l, om) in h.omega.iter().enumerate().filter(|(_, om)| **om != 0.0) {
-            self.add_torque_gradient(l, *om, out);
-        }
-        if h.omega_w.iter().any(|v| *v != 0.0) {
-            for c in 0..nv {
-                out[c] += dot6(&h.omega_w, &w.w_dq[c]);
-                out[nv + c] += dot6(&h.omega_w, &w.w_dv[c]);
-                out[2 * nv + c] += dot6(&h.omega_w, &w.w_da[c]);
-            }
-            for m in 0..nl {
-                out[3 * nv + m] += dot6(&h.omega_w, &w.w_dl[m]);
-            }
-        }
-        if self.spec.strength.is_some() {
-            self.add_strength_gradient(out);
-        }
-    }
-
-    /// `out += s ∇τ_l` at the state in `self.work`: `[∂/∂q, ∂/∂q̇, ∂/∂q̈, ∂/∂λ̃]`.
-    pub(super) fn add_torque_gradient(&self, l: usize, s: f64, out: &mut [f64]) {
-        let (nv, nl, w) = (self.layout.nv, self.layout.n_lambda, &self.work);
-        for c in 0..nv {
-            out[c] += s * w.dq[l * nv + c];
-            out[nv + c] += s * w.dv[l * nv + c];
-            out[2 * nv + c] += s * w.da[l * nv + c];
-        }
-        for m in 0..nl {
-            out[3 * nv + m] += s * w.dl[l * nl + m];
-        }
-    }
-
     /// `∇²φₖ` into `hess.s`: forward differences of `∇φ` along `q` and `q̇`, the rest by structure.
     fn node_hessian(&mut self, k: usize) {
         let (nv, nl) = (self.layout.nv, self.layout.n_lambda);
         let d = 3 * nv + nl;
         self.node_state(k);
         self.save_state();
-        self.hess.torques_only = true;
-        self.eval_state(true);
         let mut grad = std::mem::take(&mut self.hess.grad);
         let mut perturbed = std::mem::take(&mut self.hess.grad_perturbed);
         self.node_gradient(&mut grad);
@@ -216,7 +178,6 @@ impl Transcription<'_> {
         for j in 0..2 * nv {
             self.restore_state();
             let epsilon = self.perturb(j);
-            self.eval_state(true);
             self.node_gradient(&mut perturbed);
             // Column j (a q or q̇ column), and row j by symmetry for the q̈ and λ columns.
             for i in 0..d {
@@ -231,7 +192,6 @@ impl Transcription<'_> {
             }
         }
         self.restore_state();
-        self.hess.torques_only = false;
         self.hess.grad = grad;
         self.hess.grad_perturbed = perturbed;
     }

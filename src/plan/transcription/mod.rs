@@ -24,6 +24,7 @@ mod hessian;
 mod layout;
 mod measure;
 mod node;
+mod node_gradient;
 mod objective;
 mod problem;
 mod root;

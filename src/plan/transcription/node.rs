@@ -172,9 +172,6 @@ impl Transcription<'_> {
                 }
             }
         }
-        if self.hess.torques_only {
-            return; // a pass of the second-order term reads the torques' derivatives only
-        }
         match spec.objective {
             Objective::Torque => {
                 for l in 0..nv {

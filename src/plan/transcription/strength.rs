@@ -95,17 +95,17 @@ impl Transcription<'_> {
         self.spec.terms.strength > 0.0 && self.limit_varies(l)
     }
 
-    /// `∇φ` (`out`, `[∂/∂q, ∂/∂q̇, ∂/∂q̈, ∂/∂λ̃]`) gains the strength parts at the state in `work`:
-    /// `ρ_l (f ∂τ_l + τ_l ∂f)` and `−σ± ∂S±`.
+    /// `∇φ` (`out`, `[∂/∂q, ∂/∂q̇, ∂/∂q̈, ∂/∂λ̃]`) gains the strength parts at the state in `work` (the active
+    /// torques in `work.tau`): `ρ_l τ_l ∂f` and `−σ± ∂S±` (`ρ_l f ∂τ_l` is in the weights `ω̂`).
     pub(super) fn add_strength_gradient(&self, out: &mut [f64]) {
         let nv = self.layout.nv;
         let (w, h) = (&self.work, &self.hess);
         for l in 0..nv {
             let (q, qd) = (w.q[l], w.qd[l]);
             if h.rho[l] != 0.0 {
+                // ρ f ∂τ is in ω̂ (`node_gradient.rs`); here ρ τ ∂f
                 let f = self.torque_factor(l, h.positive[l], q, qd);
                 let rt = h.rho[l] * w.tau[l];
-                self.add_torque_gradient(l, h.rho[l] * f.value, out);
                 out[l] += rt * f.d1;
                 out[nv + l] += rt * f.d2;
             }

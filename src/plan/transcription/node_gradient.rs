@@ -1,0 +1,100 @@
+//! `∇φₖ` of one node's weighted torques (`hessian.rs`), at the state in `work`, without the node's
+//! derivative matrices: one contracted pass of the engine ([`rnea_gradient`], O(nv)) and the contracted
+//! derivatives of the loads and contact forces on their paths,
+//!
+//! ```text
+//!   φ = Σ_l ω̂_l τ_l + ω_W · W,    τ = ID(q, q̇, q̈) − τ_passive − Σ Jᵀf,   W = W_ID − Σ [p × f; f],
+//!   ω̂_l = ω_l + ρ_l f_l(q_l, q̇_l)                  (the strength residuals' varying factor, `strength.rs`)
+//!   ∇φ = ∇(ω̂ᵀτ_ID + ω_W·W_ID) + ω̂ᵢ [kᵢ; dᵢ] − Σ_f ω̂ᵀ ∂(Jᵀf) − ω_W · ∂[p×f; f] + Σ_l ρ_l τ_l ∇f_l − σ± ∇S±
+//! ```
+//!
+//! (`kᵢ`, `dᵢ` the passive stiffness and damping; the `λ̃` columns `∂φ/∂λ̃_m = −(Σᵢ ω̂ᵢ Sᵢ + ω_W) · [p × e_m; e_m]`).
+
+use super::Transcription;
+use crate::dynamics::point_force::{add_generalized_force, generalized_force_derivative};
+use crate::dynamics::{kinematics, rnea_gradient::rnea_gradient, Data};
+use crate::spatial::{Force, Motion, Vec3};
+
+impl Transcription<'_> {
+    /// `∇φ` at the state in `self.work` into `out`: `[∂/∂q, ∂/∂q̇, ∂/∂q̈, ∂/∂λ̃]`. Leaves the active torque
+    /// in `work.tau`.
+    pub(super) fn node_gradient(&mut self, out: &mut [f64]) {
+        let (spec, nv) = (self.spec, self.layout.nv);
+        self.effective_weights();
+        let h = &self.hess;
+        let ow = &h.omega_w;
+        let u0 = Motion::new(Vec3::new(ow[0], ow[1], ow[2]), Vec3::new(ow[3], ow[4], ow[5]));
+        let (w, data) = (&mut self.work, &mut self.data);
+        out.fill(0.0);
+        let (g_q, rest) = out.split_at_mut(nv);
+        let (g_v, rest) = rest.split_at_mut(nv);
+        let (g_a, g_l) = rest.split_at_mut(nv);
+        // ∇(ω̂ᵀτ_ID + ω_W·W_ID), and τ = τ_ID
+        let z = (&w.q[..], &w.qd[..], &w.qdd[..]);
+        rnea_gradient(&spec.model, data, z, &spec.gravity, None, &h.omega_hat, &u0, (&mut *g_q, &mut *g_v, g_a));
+        w.tau.copy_from_slice(data.tau.as_slice());
+        // τ −= τ_passive(q, q̇) = −k(q − q₀) − d q̇:  ∂φ/∂qᵢ += ω̂ᵢ kᵢ, ∂φ/∂q̇ᵢ += ω̂ᵢ dᵢ
+        for i in 0..nv {
+            let p = &spec.model.joints[i + 1].passive;
+            w.tau[i] -= p.torque(w.q[i], w.qd[i]);
+            g_q[i] += h.omega_hat[i] * p.stiffness;
+            g_v[i] += h.omega_hat[i] * p.damping;
+        }
+        for (l, load) in spec.loads.iter().enumerate() {
+            let p = kinematics::frame_placement(&spec.model, data, load.frame).translation;
+            let path = &self.load_paths[l];
+            world_force_gradient(data, path, &p, &load.force, (&h.omega_hat, &u0), &mut w.scratch, g_q, &mut w.tau);
+        }
+        for (c, contact) in spec.contacts.iter().enumerate() {
+            let info = &self.contacts[c];
+            let p = kinematics::frame_placement(&spec.model, data, contact.frame).translation;
+            let f = info.directions.iter().enumerate().fold(Vec3::zeros(), |f, (m, e)| f + e * w.lambda[info.offset + m]);
+            world_force_gradient(data, &info.path, &p, &f, (&h.omega_hat, &u0), &mut w.scratch, g_q, &mut w.tau);
+            // ∂φ/∂λ̃_m = −(Σ_{i on the path} ω̂ᵢ Sᵢ + ω_W) · [p × e_m; e_m]
+            let weight = info.path.iter().fold(u0, |u, &i| u.add_scaled(&data.S[i + 1], h.omega_hat[i]));
+            for (m, e) in info.directions.iter().enumerate() {
+                g_l[info.offset + m] = -weight.dot(&Force::new(p.cross(e), *e));
+            }
+        }
+        if spec.strength.is_some() {
+            self.add_strength_gradient(out);
+        }
+    }
+
+    /// `ω̂ = ω + ρ f(q, q̇)` at the state in `work` into `hess.omega_hat`.
+    fn effective_weights(&mut self) {
+        for l in 0..self.layout.nv {
+            let rho = self.hess.rho[l];
+            let varying = if rho != 0.0 {
+                rho * self.torque_factor(l, self.hess.positive[l], self.work.q[l], self.work.qd[l]).value
+            } else {
+                0.0
+            };
+            self.hess.omega_hat[l] = self.hess.omega[l] + varying;
+        }
+    }
+}
+
+/// A world-fixed force `f` at the world point `p` of the body whose root path is `path`: `τ −= Jᵀf`, and
+/// `g_q −= ω̂ᵀ ∂(Jᵀf)/∂q + ω_W · ∂[p × f; f]/∂q` (`∂p/∂q_k = S_k,ω × p + S_k,v`). `scratch` holds `|path|²`.
+#[allow(clippy::too_many_arguments)]
+fn world_force_gradient(
+    data: &Data,
+    path: &[usize],
+    p: &Vec3,
+    f: &Vec3,
+    (omega_hat, u0): (&[f64], &Motion),
+    scratch: &mut [f64],
+    g_q: &mut [f64],
+    tau: &mut [f64],
+) {
+    let m = path.len();
+    add_generalized_force(data, path, p, &(-f), tau);
+    generalized_force_derivative(data, path, p, f, &mut scratch[..m * m]);
+    for (c, &kc) in path.iter().enumerate() {
+        let s = &data.S[kc + 1];
+        let p_dot = s.w.cross(p) + s.v;
+        let torques: f64 = path.iter().enumerate().map(|(r, &kr)| omega_hat[kr] * scratch[r * m + c]).sum();
+        g_q[kc] -= torques + u0.w.dot(&p_dot.cross(f));
+    }
+}
