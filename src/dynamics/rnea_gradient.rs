@@ -47,13 +47,29 @@ pub fn rnea_gradient(
     u0: &Motion,
     (g_q, g_v, g_a): (&mut [f64], &mut [f64], &mut [f64]),
 ) {
+    placements(model, data, q);
+    rnea_gradient_placed(model, data, (q, v, a), gravity, fext, omega, u0, (g_q, g_v, g_a));
+}
+
+/// [`rnea_gradient`] with the placements of `q` already in `data` (by [`placements`], or a previous call
+/// at the same `q`): for a change of `q̇` or `q̈` alone.
+#[allow(clippy::too_many_arguments)]
+pub fn rnea_gradient_placed(
+    model: &Model,
+    data: &mut Data,
+    (q, v, a): (&[f64], &[f64], &[f64]),
+    gravity: &Vec3,
+    fext: ExternalForces,
+    omega: &[f64],
+    u0: &Motion,
+    (g_q, g_v, g_a): (&mut [f64], &mut [f64], &mut [f64]),
+) {
     let nv = model.nv();
     check_sizes(model, q, v, a);
     assert!(
         omega.len() == nv && g_q.len() == nv && g_v.len() == nv && g_a.len() == nv,
         "ω and the gradient need {nv} entries each"
     );
-    placements(model, data, q);
     velocities(model, data, v);
     accelerations(model, data, v, a, gravity);
     body_forces(model, data, fext);

@@ -173,12 +173,13 @@ impl Transcription<'_> {
         self.save_state();
         let mut grad = std::mem::take(&mut self.hess.grad);
         let mut perturbed = std::mem::take(&mut self.hess.grad_perturbed);
-        self.node_gradient(&mut grad);
+        self.node_gradient(&mut grad, false);
         self.hess.s.fill(0.0);
         for j in 0..2 * nv {
             self.restore_state();
             let epsilon = self.perturb(j);
-            self.node_gradient(&mut perturbed);
+            // A q̇ column keeps q: the placements of the previous pass hold from the second q̇ column on.
+            self.node_gradient(&mut perturbed, j > nv);
             // Column j (a q or q̇ column), and row j by symmetry for the q̈ and λ columns.
             for i in 0..d {
                 let v = (perturbed[i] - grad[i]) / epsilon;

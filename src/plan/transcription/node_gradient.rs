@@ -12,13 +12,14 @@
 
 use super::Transcription;
 use crate::dynamics::point_force::{add_generalized_force, generalized_force_derivative};
-use crate::dynamics::{kinematics, rnea_gradient::rnea_gradient, Data};
+use crate::dynamics::rnea_gradient::{rnea_gradient, rnea_gradient_placed};
+use crate::dynamics::{kinematics, Data};
 use crate::spatial::{Force, Motion, Vec3};
 
 impl Transcription<'_> {
     /// `∇φ` at the state in `self.work` into `out`: `[∂/∂q, ∂/∂q̇, ∂/∂q̈, ∂/∂λ̃]`. Leaves the active torque
-    /// in `work.tau`.
-    pub(super) fn node_gradient(&mut self, out: &mut [f64]) {
+    /// in `work.tau`. `placed`: the engine's placements are those of `work.q` already.
+    pub(super) fn node_gradient(&mut self, out: &mut [f64], placed: bool) {
         let (spec, nv) = (self.spec, self.layout.nv);
         self.effective_weights();
         let h = &self.hess;
@@ -31,7 +32,8 @@ impl Transcription<'_> {
         let (g_a, g_l) = rest.split_at_mut(nv);
         // ∇(ω̂ᵀτ_ID + ω_W·W_ID), and τ = τ_ID
         let z = (&w.q[..], &w.qd[..], &w.qdd[..]);
-        rnea_gradient(&spec.model, data, z, &spec.gravity, None, &h.omega_hat, &u0, (&mut *g_q, &mut *g_v, g_a));
+        let gradient = if placed { rnea_gradient_placed } else { rnea_gradient };
+        gradient(&spec.model, data, z, &spec.gravity, None, &h.omega_hat, &u0, (&mut *g_q, &mut *g_v, g_a));
         w.tau.copy_from_slice(data.tau.as_slice());
         // τ −= τ_passive(q, q̇) = −k(q − q₀) − d q̇:  ∂φ/∂qᵢ += ω̂ᵢ kᵢ, ∂φ/∂q̇ᵢ += ω̂ᵢ dᵢ
         for i in 0..nv {
