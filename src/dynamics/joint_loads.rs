@@ -1,6 +1,7 @@
 //! The load every joint transmits: the force and moment the parent body exerts on the child body through
-//! the joint, from the backward pass of [`rnea`](super::rnea) with the world-fixed point forces the
-//! planner applies (contact reactions, constant loads).
+//! the joint, from the backward pass of [`rnea`](super::rnea) with the external loads: the world-fixed
+//! point forces the planner applies (contact reactions, constant loads), or any wrench on a body (the
+//! loads of `mintorque inverse --loads`).
 //!
 //! After the inflow pass `Fᵢ = Σ_{j ∈ subtree(i)} fⱼ` (world coordinates, moment about the world origin),
 //! with `fⱼ = Iⱼ aⱼ + vⱼ ×* Iⱼ vⱼ − fⱼᵉˣᵗ` and gravity folded into the accelerations (`a₀ = −g`), so `Fᵢ` is
@@ -29,6 +30,23 @@ pub struct PointForce {
     pub force: Vec3,
 }
 
+/// An external wrench on a body: world axes, the moment about the world origin (`[p × f + m; f]` for a
+/// force `f` at `p` and a moment `m`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BodyWrench {
+    /// The body it acts on (index in `model.bodies`).
+    pub body: usize,
+    /// The wrench on the body (N·m; N).
+    pub wrench: Force,
+}
+
+impl From<&PointForce> for BodyWrench {
+    /// `[p × λ; λ]`: the point force as a wrench about the world origin.
+    fn from(pf: &PointForce) -> BodyWrench {
+        BodyWrench { body: pf.body, wrench: Force::new(pf.point.cross(&pf.force), pf.force) }
+    }
+}
+
 /// The load joint `i` transmits, in the child body's frame at the joint origin.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct JointLoad {
@@ -49,13 +67,28 @@ pub fn joint_loads(
     gravity: &Vec3,
     external: &[PointForce],
 ) -> Vec<JointLoad> {
+    let wrenches: Vec<BodyWrench> = external.iter().map(BodyWrench::from).collect();
+    joint_loads_under(model, data, q, v, a, gravity, &wrenches)
+}
+
+/// The load of every joint (in `q` order) at the state `(q, q̇, q̈)` under `gravity` and the external
+/// `wrenches`; leaves placements, velocities and the joint forces `Fᵢ` (world) in `data`.
+pub fn joint_loads_under(
+    model: &Model,
+    data: &mut Data,
+    q: &[f64],
+    v: &[f64],
+    a: &[f64],
+    gravity: &Vec3,
+    wrenches: &[BodyWrench],
+) -> Vec<JointLoad> {
     placements(model, data, q);
     velocities(model, data, v);
     accelerations(model, data, v, a, gravity);
     body_forces(model, data, None);
-    // fⱼ −= [p × λ; λ]: each point force as a world wrench about the world origin.
-    for pf in external {
-        data.f[pf.body] -= Force::new(pf.point.cross(&pf.force), pf.force);
+    // fⱼ −= Fⱼᵉˣᵗ: each external wrench (world, about the world origin) on its body.
+    for w in wrenches {
+        data.f[w.body] -= w.wrench;
     }
     joint_forces(model, data);
     // Fᵢᶜ = ⁰Mᵢ⁻¹ Fᵢ: the joint force in the child body's frame, moment about its origin.

@@ -5,8 +5,9 @@
 //! (the settings and the ergonomic report) and, unless left out, the plots of a plan.
 
 use super::driver::{Inverse, Spline};
+use super::loads::Loads;
 use crate::model::Model;
-use crate::report::ergonomics::{self, Ergonomics};
+use crate::report::ergonomics::{self, loads::LoadSeries, Ergonomics};
 use crate::report::export::{csv::csv, mot};
 use crate::report::plots;
 use crate::report::record::PlanRecord;
@@ -64,16 +65,15 @@ pub fn summary(
     chain: Option<&Model>,
     inverse: &Inverse,
     motion: &str,
-    loads: Option<String>,
+    loads: Option<&Loads>,
 ) -> crate::Result<InverseSummary> {
     let r = &inverse.record;
     let span = [r.samples.first().map_or(0.0, |s| s.t), r.samples.last().map_or(0.0, |s| s.t)];
-    let loads_given = loads.is_some();
     Ok(InverseSummary {
         format: SUMMARY_FORMAT,
         model: model.name.clone(),
         motion: motion.to_string(),
-        loads,
+        loads: loads.map(|l| l.origin.clone()),
         input_samples: inverse.input_samples,
         rate_hz: inverse.rate_hz,
         samples: r.samples.len(),
@@ -88,7 +88,7 @@ pub fn summary(
         },
         forces_of: if inverse.chain.is_some() { "coordinates (coupled model: Gᵀ τ_chain)" } else { "joints" },
         gravity: r.gravity,
-        ergonomics: report(model, r, chained(model, chain, inverse), loads_given)?,
+        ergonomics: report(model, r, chained(model, chain, inverse), loads)?,
     })
 }
 
@@ -110,29 +110,36 @@ fn chained<'a>(model: &'a Model, chain: Option<&'a Model>, inverse: &'a Inverse)
     }
 }
 
+/// The joint loads of the chain's motion under gravity and the external `loads` (at each sample's time).
+fn joint_load_series(chain: &Model, record: &PlanRecord, loads: Option<&Loads>) -> crate::Result<LoadSeries> {
+    ergonomics::loads::series_under(chain, record, |s, data| loads.map_or(Vec::new(), |l| l.wrenches(chain, data, s.t)))
+}
+
 /// The ergonomic report of the processed motion (per joint or coordinate of `model`), with the L5/S1
-/// load of the joint named `lumbar` when the chain has one (as the planner's default) and no external
-/// loads act (the joint loads are computed without them).
+/// load of the joint named `lumbar` when the chain has one (as the planner's default), from the chain's
+/// joint loads (the external `loads` included).
 fn report(
     model: &Model,
     record: &PlanRecord,
     (chain, chain_record): (&Model, &PlanRecord),
-    loads_given: bool,
+    loads: Option<&Loads>,
 ) -> crate::Result<Ergonomics> {
     let mut report = ergonomics::ergonomics(model, record, &BTreeMap::new())?;
-    if let (Some(lumbar), false) = (chain.dof_index("lumbar"), loads_given) {
-        let series = ergonomics::loads::series(chain, chain_record, &[])?;
+    if let Some(lumbar) = chain.dof_index("lumbar") {
+        let series = joint_load_series(chain, chain_record, loads)?;
         report.low_back = Some(ergonomics::lumbar::low_back(chain, chain_record, &series, lumbar));
     }
     Ok(report)
 }
 
 /// Every file of the output directory but the manifest, by name; the plots unless `no_plots`. `model`
-/// names the record's joints (a coupled model's coordinates, its chain `chain`).
+/// names the record's joints (a coupled model's coordinates, its chain `chain`); the joint loads include
+/// the external `loads`.
 pub fn render(
     model: &Model,
     chain: Option<&Model>,
     inverse: &Inverse,
+    loads: Option<&Loads>,
     summary: &InverseSummary,
     no_plots: bool,
 ) -> crate::Result<BTreeMap<String, Vec<u8>>> {
@@ -142,15 +149,15 @@ pub fn render(
     files.insert("inverse_dynamics.csv".to_string(), csv(model, r, &Default::default())?.into_bytes());
     files.insert("q_filtered.mot".to_string(), mot::mot(model, r).into_bytes());
     let (chain, chain_record) = chained(model, chain, inverse);
-    let loads = ergonomics::loads::series(chain, chain_record, &[])?;
-    files.insert("joint_loads.csv".to_string(), ergonomics::loads::csv(chain, chain_record, &loads).into_bytes());
+    let series = joint_load_series(chain, chain_record, loads)?;
+    files.insert("joint_loads.csv".to_string(), ergonomics::loads::csv(chain, chain_record, &series).into_bytes());
     let mut text =
         serde_json::to_string_pretty(summary).map_err(|e| crate::Error::input("summary.json", "serialising", e.to_string()))?;
     text.push('\n');
     files.insert("summary.json".to_string(), text.into_bytes());
     if !no_plots {
         files.extend(plots::plots_labelled(model, r, None, "inverse dynamics")?);
-        files.extend(ergonomics::plots::plots(chain, chain_record, Some(&loads), &summary.ergonomics)?);
+        files.extend(ergonomics::plots::plots(chain, chain_record, Some(&series), &summary.ergonomics)?);
     }
     Ok(files)
 }

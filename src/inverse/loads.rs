@@ -7,6 +7,7 @@
 //! (`Sₖ · F` for every joint `k` on the path to the frame's body; `point_force`).
 
 use super::table;
+use crate::dynamics::joint_loads::BodyWrench;
 use crate::dynamics::{kinematics::frame_placement, point_force, Data};
 use crate::error::{Error, Result};
 use crate::model::Model;
@@ -126,29 +127,35 @@ impl Loads {
         Err(Error::input(&self.origin, "time_s", message))
     }
 
-    /// `τ −= Σ Jᵀ[p × f + m; f]` at time `t`, after `rnea` left the placements in `data`.
+    /// `τ −= Σ Jᵀ[p × f + m; f]` at time `t`, after `rnea` left the placements in `data`: `Sₖ · F` for
+    /// every joint `k` on the path to each loaded body.
     pub fn subtract(&self, model: &Model, data: &Data, t: f64, tau: &mut [f64]) {
+        for w in self.wrenches(model, data, t) {
+            for j in point_force::path_dofs(model, w.body) {
+                tau[j] -= data.S[j + 1].dot(&w.wrench);
+            }
+        }
+    }
+
+    /// Every load at time `t` as a wrench on its body, `F = [p × f + m; f]` (world axes, about the world
+    /// origin), after the placements are in `data`.
+    pub fn wrenches(&self, model: &Model, data: &Data, t: f64) -> Vec<BodyWrench> {
         let (k, w) = self.bracket(t);
-        for load in &self.loads {
+        let wrench = |load: &Load| {
             // Linear interpolation: x(t) = (1 − w) xₖ + w xₖ₊₁.
             let lerp = |x: &[Vec3]| x[k] * (1.0 - w) + x[(k + 1).min(x.len() - 1)] * w;
             // In world axes: f = R_e·f_e, m = R_e·m_e; the point p = X_e·p_e, or the frame's origin.
             let axes = load.expressed_in.map_or(Mat3::identity(), |e| frame_placement(model, data, e).rotation);
             let (f, m) = (axes * lerp(&load.force), axes * lerp(&load.moment));
-            let body = model.frames[load.frame].body;
-            let path = point_force::path_dofs(model, body);
             let p = match &load.point {
                 None => frame_placement(model, data, load.frame).translation,
                 Some(pt) => {
                     pt.expressed_in.map_or(lerp(&pt.values), |e| frame_placement(model, data, e).act_point(&lerp(&pt.values)))
                 }
             };
-            point_force::add_generalized_force(data, &path, &p, &(-f), tau);
-            let moment = Force::new(-m, Vec3::zeros());
-            for &j in &path {
-                tau[j] += data.S[j + 1].dot(&moment);
-            }
-        }
+            BodyWrench { body: model.frames[load.frame].body, wrench: Force::new(p.cross(&f) + m, f) }
+        };
+        self.loads.iter().map(wrench).collect()
     }
 
     /// The file's interval `[tₖ, tₖ₊₁]` holding `t` and the weight `w = (t − tₖ)/(tₖ₊₁ − tₖ)`, clamped to it.

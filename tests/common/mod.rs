@@ -4,6 +4,7 @@
 pub mod checks;
 pub mod cli;
 pub mod opensim;
+pub mod opensim_coupled;
 
 use std::path::PathBuf;
 

@@ -223,9 +223,98 @@ def multi_rotation():
     return m
 
 
+def rotations(st, names, axes):
+    """A SpatialTransform's three rotations: coordinate `names[k]` (None: a constant 0) about `axes[k]`."""
+    for k, (name, direction) in enumerate(zip(names, axes)):
+        axis(st, k, name, direction, osim.LinearFunction(1, 0) if name else osim.Constant(0))
+
+
+def custom(name, parent, loc_p, rot_p, child, loc_c, rot_c, names, axes, translations=None):
+    """A CustomJoint turning about `axes` by `names` and translating by `translations` (three functions of
+    coordinates, each (coordinate, function); None: no translation)."""
+    st = osim.SpatialTransform()
+    rotations(st, names, axes)
+    for k, tr in enumerate(translations or [None, None, None]):
+        if tr is None:
+            axis(st, 3 + k, None, [(1, 0, 0), (0, 1, 0), (0, 0, 1)][k], osim.Constant(0))
+        else:
+            axis(st, 3 + k, tr[0], [(1, 0, 0), (0, 1, 0), (0, 0, 1)][k], tr[1])
+    return osim.CustomJoint(name, parent, v3(*loc_p), v3(*rot_p), child, v3(*loc_c), v3(*rot_c), st)
+
+
+def unit(*x):
+    n = math.sqrt(sum(c * c for c in x))
+    return tuple(c / n for c in x)
+
+
+def whole_body():
+    """A gait-style whole body with arms, structurally unlike coupled_legs: a CustomJoint pelvis turning
+    rotation-list-tilt (y, x, z), a three-axis lumbar CustomJoint, CustomJoint hips with the left side's axes
+    reversed, knees whose x and y translations follow flexion by SimmSplines (no multiplier), ankles and
+    subtalar joints on their own oblique axes (a CustomJoint axis; a PinJoint in turned offset frames), toes,
+    three-axis shoulders, elbows and forearm rotations on oblique axes, two-axis wrists: 37 coordinates."""
+    m = osim.Model()
+    m.setName("whole_body")
+    m.setGravity(v3(0, -9.80665, 0))
+    g = m.getGround()
+    pelvis = add_body(m, "pelvis", 10.5, (-0.068, 0.0, 0.0), (0.093, 0.079, 0.052), (0.0, 0.0, 0.0))
+    torso = add_body(m, "torso", 30.0, (-0.03, 0.31, 0.0), (1.47, 0.75, 1.43), (0.02, 0.0, 0.0))
+    yz = ((0, 1, 0), (1, 0, 0), (0, 0, 1))
+    joints = [
+        custom("ground_pelvis", g, (0, 0, 0), (0, 0, 0), pelvis, (0, 0, 0), (0, 0, 0), ["pelvis_rotation", "pelvis_list", "pelvis_tilt"], yz,
+               [("pelvis_tx", osim.LinearFunction(1, 0)), ("pelvis_ty", osim.LinearFunction(1, 0)), ("pelvis_tz", osim.LinearFunction(1, 0))]),
+        custom("back", pelvis, (-0.1007, 0.0815, 0), (0, 0, 0), torso, (0, 0, 0), (0, 0, 0), ["lumbar_extension", "lumbar_bending", "lumbar_rotation"],
+               ((0, 0, 1), (1, 0, 0), (0, 1, 0))),
+    ]
+    # Knee translations (m) as functions of flexion (rad), sampled unevenly as gait models do.
+    knee_x = [-2.0944, -1.5708, -1.0472, -0.6981, -0.3491, -0.1745, 0.0, 0.1745, 0.35]
+    knee_tx = spline(knee_x, lambda q: 0.0035 * math.sin(2.1 * q + 0.4) - 0.0015 * q)
+    knee_ty = spline(knee_x, lambda q: -0.396 - 0.006 * q * (q + 0.5) + 0.0008 * q**3)
+    for side, s in (("r", 1.0), ("l", -1.0)):
+        femur = add_body(m, f"femur_{side}", 8.4, (0.0, -0.17, 0.0), (0.112, 0.029, 0.118), (0.0, 0.0, 0.0))
+        tibia = add_body(m, f"tibia_{side}", 3.3, (0.0, -0.187, 0.0), (0.045, 0.0046, 0.046), (0.0, 0.0, 0.0))
+        talus = add_body(m, f"talus_{side}", 0.09, (0.0, 0.0, 0.0), (0.001, 0.001, 0.001), (0.0, 0.0, 0.0))
+        calcn = add_body(m, f"calcn_{side}", 1.1, (0.1, 0.03, 0.0), (0.0014, 0.0039, 0.0041), (0.0, 0.0, 0.0))
+        toes = add_body(m, f"toes_{side}", 0.19, (0.035, 0.006, -0.018 * s), (0.0001, 0.0002, 0.0001), (0.0, 0.0, 0.0))
+        humerus = add_body(m, f"humerus_{side}", 2.0, (0.0, -0.164, 0.0), (0.0141, 0.0046, 0.0158), (0.0, 0.0, 0.0))
+        ulna = add_body(m, f"ulna_{side}", 0.61, (0.0, -0.12, 0.0), (0.0030, 0.0006, 0.0032), (0.0, 0.0, 0.0))
+        radius = add_body(m, f"radius_{side}", 0.61, (0.0, -0.12, 0.0), (0.0030, 0.0006, 0.0032), (0.0, 0.0, 0.0))
+        hand = add_body(m, f"hand_{side}", 0.46, (0.0, -0.068, 0.0), (0.0009, 0.0005, 0.0013), (0.0, 0.0, 0.0))
+        # Mirrored: the left side's adduction and rotation axes reversed.
+        joints.append(custom(f"hip_{side}", pelvis, (-0.0707, -0.0661, 0.0835 * s), (0, 0, 0), femur, (0, 0, 0), (0, 0, 0),
+                             [f"hip_flexion_{side}", f"hip_adduction_{side}", f"hip_rotation_{side}"], ((0, 0, 1), (s, 0, 0), (0, s, 0))))
+        joints.append(custom(f"knee_{side}", femur, (0, 0, 0), (0, 0, 0), tibia, (0, 0, 0), (0, 0, 0), [f"knee_angle_{side}", None, None],
+                             ((0, 0, 1), (1, 0, 0), (0, 1, 0)), [(f"knee_angle_{side}", osim.SimmSpline(knee_tx)), (f"knee_angle_{side}", osim.SimmSpline(knee_ty)), None]))
+        joints.append(custom(f"ankle_{side}", tibia, (0, -0.43, 0), (0, 0, 0), talus, (0, 0, 0), (0, 0, 0), [f"ankle_angle_{side}", None, None],
+                             (unit(-0.105 * s, -0.174 * s, 0.979), (1, 0, 0), (0, 1, 0))))
+        # The subtalar axis as a PinJoint's z in turned frames (body-fixed XYZ angles, rad).
+        joints.append(osim.PinJoint(f"subtalar_{side}", talus, v3(-0.0488, -0.0419, 0.0079 * s), v3(-1.768 * s, 0.906 * s, 1.819), calcn,
+                                    v3(0.0, 0.0, 0.0), v3(-1.768 * s, 0.906 * s, 1.819)))
+        joints.append(osim.PinJoint(f"mtp_{side}", calcn, v3(0.179, -0.002, 0.001 * s), v3(0, -0.5 * s, 0), toes, v3(0, 0, 0), v3(0, -0.5 * s, 0)))
+        joints.append(custom(f"acromial_{side}", torso, (0.003, 0.372, 0.17 * s), (0, 0, 0), humerus, (0, 0, 0), (0, 0, 0),
+                             [f"arm_flex_{side}", f"arm_add_{side}", f"arm_rot_{side}"], ((0, 0, 1), (s, 0, 0), (0, s, 0))))
+        joints.append(custom(f"elbow_{side}", humerus, (0.013, -0.286, -0.0096 * s), (0, 0, 0), ulna, (0, 0, 0), (0, 0, 0), [f"elbow_flex_{side}", None, None],
+                             (unit(0.049 * s, 0.036 * s, 0.998), (1, 0, 0), (0, 1, 0))))
+        joints.append(custom(f"radioulnar_{side}", ulna, (-0.007, -0.013, 0.026 * s), (0, 0, 0), radius, (0, 0, 0), (0, 0, 0), [f"pro_sup_{side}", None, None],
+                             (unit(-0.017 * s, 0.992 * s, -0.123), (1, 0, 0), (0, 0, 1))))
+        joints.append(custom(f"radius_hand_{side}", radius, (-0.009, -0.235, 0.013 * s), (0, 0, 0), hand, (0, 0, 0), (0, 0, 0), [f"wrist_flex_{side}", f"wrist_dev_{side}", None],
+                             ((0, 0, 1), (s, 0, 0), (0, 1, 0))))
+    for j in joints:
+        if j.getConcreteClassName() == "PinJoint":
+            j.upd_coordinates(0).setName(j.getName().replace("_r", "_angle_r").replace("_l", "_angle_l"))
+        m.addJoint(j)
+    m.finalizeConnections()
+    for side in "rl":
+        set_range(m, f"knee_angle_{side}", -2.0944, 0.35)
+    set_range(m, "pelvis_tx", -1.0, 1.0)
+    set_range(m, "pelvis_ty", 0.0, 1.2)
+    return m
+
+
 def build(out):
     os.makedirs(out, exist_ok=True)
-    models = (("skeleton.osim", skeleton), ("coupled_legs.osim", coupled_legs), ("constant_rotation.osim", constant_rotation), ("multi_rotation.osim", multi_rotation))
+    models = (("skeleton.osim", skeleton), ("coupled_legs.osim", coupled_legs), ("constant_rotation.osim", constant_rotation), ("multi_rotation.osim", multi_rotation),
+              ("whole_body.osim", whole_body))
     for name, make in models:
         m = make()
         m.initSystem()

@@ -73,9 +73,8 @@ pub fn run(subject: &Subject, a: &Args) -> Result<()> {
         Subject::Joints(model) => inverse::inverse_dynamics(model, &motion, &a.settings, loads.as_ref())?,
         Subject::Coupled(osim) => coupled::inverse_dynamics(osim, &motion, &a.settings, loads.as_ref())?,
     };
-    let loads_name = a.loads.map(|p| p.display().to_string());
-    let summary = files::summary(&names, chain, &result, &a.motion.display().to_string(), loads_name)?;
-    let rendered = files::render(&names, chain, &result, &summary, a.no_plots)?;
+    let summary = files::summary(&names, chain, &result, &a.motion.display().to_string(), loads.as_ref())?;
+    let rendered = files::render(&names, chain, &result, loads.as_ref(), &summary, a.no_plots)?;
     plan_dir::write_files(a.out, &rendered, &WriteOptions::default())?;
     if !a.quiet {
         let filter = match (a.settings.filter_hz, a.settings.spline) {

@@ -1,12 +1,12 @@
-//! The joint loads of a planned motion, sample by sample ([`crate::dynamics::joint_loads`] with the
-//! contact reactions the plan holds and the task's constant loads), and `joint_loads.csv`.
+//! The joint loads of a motion, sample by sample ([`crate::dynamics::joint_loads`] with the contact
+//! reactions a plan holds and the task's constant loads, or any external wrenches), and `joint_loads.csv`.
 
-use crate::dynamics::joint_loads::{joint_loads, JointLoad, PointForce};
+use crate::dynamics::joint_loads::{joint_loads_under, BodyWrench, JointLoad, PointForce};
 use crate::dynamics::{kinematics, Data};
 use crate::error::{Error, Result};
 use crate::model::Model;
 use crate::plan::spec::PointLoad;
-use crate::report::record::PlanRecord;
+use crate::report::record::{PlanRecord, SampleRecord};
 use crate::spatial::Vec3;
 use std::fmt::Write as _;
 
@@ -16,7 +16,6 @@ pub type LoadSeries = Vec<Vec<JointLoad>>;
 /// Every joint's load at every sample of `record`, under its gravity, its contact forces (at the contact
 /// frames' origins) and the constant `loads` (at their frames' origins).
 pub fn series(model: &Model, record: &PlanRecord, loads: &[PointLoad]) -> Result<LoadSeries> {
-    crate::report::check_samples(model, record)?;
     let contact_frames = record
         .contacts
         .iter()
@@ -26,20 +25,33 @@ pub fn series(model: &Model, record: &PlanRecord, loads: &[PointLoad]) -> Result
             })
         })
         .collect::<Result<Vec<usize>>>()?;
+    series_under(model, record, |s, data| {
+        let at = |frame: usize, force: Vec3| {
+            let point = kinematics::frame_placement(model, data, frame).translation;
+            BodyWrench::from(&PointForce { body: model.frames[frame].body, point, force })
+        };
+        let mut external: Vec<BodyWrench> = loads.iter().map(|l| at(l.frame, l.force)).collect();
+        external.extend(contact_frames.iter().zip(&s.contact_forces).map(|(&f, force)| at(f, Vec3::from(*force))));
+        external
+    })
+}
+
+/// Every joint's load at every sample of `record`, under its gravity and the external wrenches
+/// `external(sample, data)` gives (called with the sample's placements in `data`).
+pub fn series_under(
+    model: &Model,
+    record: &PlanRecord,
+    mut external: impl FnMut(&SampleRecord, &Data) -> Vec<BodyWrench>,
+) -> Result<LoadSeries> {
+    crate::report::check_samples(model, record)?;
     let gravity = Vec3::from(record.gravity);
     let mut data = Data::new(model);
     let mut out = Vec::with_capacity(record.samples.len());
     for s in &record.samples {
-        // The point forces need the placements at this sample: place first, then read the frames.
+        // The external wrenches need the placements at this sample: place first, then ask.
         kinematics::placements(model, &mut data, &s.q);
-        let at = |frame: usize, force: Vec3| PointForce {
-            body: model.frames[frame].body,
-            point: kinematics::frame_placement(model, &data, frame).translation,
-            force,
-        };
-        let mut external: Vec<PointForce> = loads.iter().map(|l| at(l.frame, l.force)).collect();
-        external.extend(contact_frames.iter().zip(&s.contact_forces).map(|(&f, force)| at(f, Vec3::from(*force))));
-        out.push(joint_loads(model, &mut data, &s.q, &s.qd, &s.qdd, &gravity, &external));
+        let wrenches = external(s, &data);
+        out.push(joint_loads_under(model, &mut data, &s.q, &s.qd, &s.qdd, &gravity, &wrenches));
     }
     Ok(out)
 }
