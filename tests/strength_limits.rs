@@ -157,7 +157,7 @@ fn worst_share(samples: &[mintorque::plan::NodeValues], strengths: &mintorque::m
     worst
 }
 
-/// With the model's constant effort limits the fast lift asks the hips for several times their strength
+/// With the model's constant effort limits the fast lift asks the hips for more than their strength (1.18 ×)
 /// at the speed they extend (the constant limit does not fall with speed); bounded by strength, the same
 /// lift (the shipped example, as it is) keeps within it at every one of the 1001 samples — for a little more
 /// effort. At the default 16 times per span the evenly spaced check alone missed a 2.2 % excess at the hip
@@ -177,7 +177,8 @@ fn a_lift_bounded_by_strength_keeps_within_it_where_constant_limits_exceed_it() 
         name(i_over),
         name(i_in)
     );
-    assert!(over > 1.5, "the constant-limit plan exceeds strength: {over}");
+    // 10 % over at least: far beyond the dense check's 0.5 % tolerance that bounds the strength-limited plan.
+    assert!(over > 1.1, "the constant-limit plan exceeds strength: {over}");
     // Within the dense check's torque tolerance (0.5 % of the limit).
     assert!(inside <= 1.005, "the strength-limited plan stays within strength: {inside} ({} at {t_in} s)", name(i_in));
 }
