@@ -236,6 +236,49 @@ impl LevenbergMarquardt {
         self.growth *= 2.0;
     }
 
+    /// After the step `δ` from `x` (where `L_A = value`) was rejected with `L_A(x + δ) = trial`: the same
+    /// direction shortened to `x + αδ`, `α` the minimiser of the quadratic through `φ(0) = value`,
+    /// `φ'(0) = gᵀδ` and `φ(1) = trial` (within [0.1, 0.5]; 0.25 if `trial` is not finite). Raising `ν`
+    /// instead changes a near-Newton step little until `ν` reaches the curvature's scale, and the
+    /// compounding growth then overshoots it by orders of magnitude, after which every step recovers by
+    /// only a third. Returns the value there and the gain against the model's decrease along the line,
+    /// `−α gᵀδ − ½α² δᵀHδ` with `δᵀHδ = −gᵀδ − δᵀ(νD)δ`; leaves `x_trial` and `gradient_trial` at that point.
+    /// `None` if it does not decrease `L_A` either.
+    fn shortened(
+        &mut self,
+        al: &mut AugmentedLagrangian<'_>,
+        x: &[f64],
+        value: f64,
+        trial: f64,
+    ) -> Result<Option<(f64, f64)>, String> {
+        let slope: f64 = self.gradient.iter().zip(&self.step).map(|(g, d)| g * d).sum();
+        let damped: f64 = self.shift.iter().zip(&self.step).map(|(s, d)| s * d * d).sum();
+        let curvature = -slope - damped;
+        let alpha = if trial.is_finite() && trial - value - slope > 0.0 {
+            (-slope / (2.0 * (trial - value - slope))).clamp(0.1, 0.5)
+        } else {
+            0.25
+        };
+        for ((xt, xi), d) in self.x_trial.iter_mut().zip(x).zip(&self.step) {
+            *xt = xi + alpha * d;
+        }
+        let short = match al.evaluate(&self.x_trial, true) {
+            Ok(()) => al.value(),
+            Err(EvalError::Failed(m)) => return Err(m),
+            Err(EvalError::NonFinite(_)) => return Ok(None),
+        };
+        let predicted = -alpha * slope - 0.5 * alpha * alpha * curvature;
+        if !(short < value && predicted > 0.0) {
+            return Ok(None);
+        }
+        al.gradient(&mut self.gradient_trial);
+        for d in self.step.iter_mut() {
+            *d *= alpha;
+        }
+        self.damping *= 2.0;
+        Ok(Some((short, (value - short) / predicted)))
+    }
+
     /// One accepted LM step from `x` (where `L_A = value`), trying larger `ν` until the gain ratio is positive.
     fn step(&mut self, al: &mut AugmentedLagrangian<'_>, x: &mut [f64], value: f64) -> Step {
         loop {
@@ -283,14 +326,26 @@ impl LevenbergMarquardt {
                             .sum::<f64>();
                 }
             }
-            let gain = actual / predicted;
+            let mut gain = actual / predicted;
+            let mut value_trial = trial;
+            let mut shortened = false;
+            if !(gain > 0.0 && trial.is_finite()) {
+                match self.shortened(al, x, value, trial) {
+                    Ok(Some((t, g))) => (value_trial, gain, shortened) = (t, g, true),
+                    Ok(None) => {}
+                    Err(m) => return Step::Error(m),
+                }
+            }
+            let trial = value_trial;
             if gain > 0.0 && trial.is_finite() {
                 if let SecondOrder::Secant(term) = &mut self.second_order {
                     term.update(&self.x_trial, &al.eval, al.gradient_weights());
                 }
                 std::mem::swap(&mut self.gradient, &mut self.gradient_trial);
                 x.copy_from_slice(&self.x_trial);
-                self.damping = (self.damping * (1.0 / 3.0f64).max(1.0 - (2.0 * gain - 1.0).powi(3))).max(MIN_DAMPING);
+                if !shortened {
+                    self.damping = (self.damping * (1.0 / 3.0f64).max(1.0 - (2.0 * gain - 1.0).powi(3))).max(MIN_DAMPING);
+                }
                 self.growth = 2.0;
                 return Step::Accepted { value: trial };
             }
