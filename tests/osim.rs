@@ -64,6 +64,34 @@ fn exported_models_have_opensim_dynamics() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// Joint springs and dampers are exported as OpenSim SpringGeneralizedForces and read back as they were:
+/// OpenSim's inverse dynamics of the exported file equals ours less the passive torques, to 1e-6, where the
+/// passive torques are several percent of the forces (so a file without them, or with a sign or the rest
+/// angle wrong, fails).
+#[test]
+fn exported_springs_act_in_opensim_and_read_back() {
+    let dir = std::env::temp_dir().join(format!("mintorque-osim-springs-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let mut m = load("skeleton.osim").model;
+    for (k, j) in m.joints.iter_mut().skip(1).enumerate() {
+        let k = k as f64;
+        j.passive = model::Passive { stiffness: 40.0 + 7.0 * k, rest: 0.2 * (k % 3.0) - 0.2, damping: 2.0 + 0.5 * k };
+    }
+    let path = dir.join("springs.osim");
+    std::fs::write(&path, osim::to_osim(&m)).expect("write");
+    let back = osim::load(&path).expect("read back");
+    assert!(!back.ignored.iter().any(|l| l.contains("Spring")), "{:?}", back.ignored);
+    for (a, b) in m.joints.iter().zip(&back.model.joints) {
+        assert_eq!(a.passive, b.passive, "{}: springs read back", a.name);
+    }
+    let (worst, passive) = compare_with_opensim_passive(std::slice::from_ref(&path));
+    eprintln!(
+        "exported springs: worst relative difference from OpenSim {worst:e}; passive torques up to {passive:.3} of the forces"
+    );
+    assert!(passive > 0.02, "the springs are too weak to test anything: {passive}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 /// A plan's `.mot` plays on its exported `.osim` in OpenSim: every column is a coordinate, and OpenSim's
 /// reading (degrees to radians by the coordinates' types) is the planned start and goal (−70° → +70°).
 #[test]
@@ -101,10 +129,17 @@ fn a_plans_mot_plays_on_its_exported_osim_in_opensim() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
-/// Our coordinates' inverse dynamics against OpenSim's for each file; the worst relative difference.
+/// Our coordinates' inverse dynamics against OpenSim's for each file; the worst relative difference (and
+/// the largest passive torque relative to OpenSim's forces, in `worst_passive`).
 fn compare_with_opensim(files: &[PathBuf]) -> f64 {
+    compare_with_opensim_passive(files).0
+}
+
+/// [`compare_with_opensim`], and the largest passive torque of a state relative to its largest force.
+fn compare_with_opensim_passive(files: &[PathBuf]) -> (f64, f64) {
     let reference = opensim_reference(files);
     let mut worst: f64 = 0.0;
+    let mut worst_passive: f64 = 0.0;
     for (m, path) in reference["models"].as_array().expect("models").iter().zip(files) {
         let file = m["file"].as_str().expect("file");
         let mut file_worst: f64 = 0.0;
@@ -125,7 +160,17 @@ fn compare_with_opensim(files: &[PathBuf]) -> f64 {
             };
             let (q, v, a) = (reorder(numbers(&s["q"])), reorder(numbers(&s["v"])), reorder(numbers(&s["a"])));
             let expected = reorder(numbers(&s["tau"]));
-            let tau = osim.coordinates.inverse_dynamics(&osim.model, &mut data, &q, &v, &a).expect("inverse dynamics");
+            let mut tau = osim.coordinates.inverse_dynamics(&osim.model, &mut data, &q, &v, &a).expect("inverse dynamics");
+            // OpenSim's solver counts the model's springs as applied forces: what it returns is the rest,
+            // τ − τ_passive (springs sit only on DOFs that are their coordinate, q_chain = q).
+            let mut passive: f64 = 0.0;
+            for (k, dof) in osim.coordinates.chain.iter().enumerate() {
+                let c = dof.coordinate;
+                let p = osim.model.joints[k + 1].passive.torque(q[c], v[c]);
+                tau[c] -= p;
+                passive = passive.max(p.abs());
+            }
+            worst_passive = worst_passive.max(passive / max_abs(&expected));
             let diff: Vec<f64> = tau.iter().zip(&expected).map(|(x, y)| x - y).collect();
             let rel = max_abs(&diff) / max_abs(&expected);
             // OpenSim's own velocities differentiate its positions here (see constant_rotation below).
@@ -141,7 +186,7 @@ fn compare_with_opensim(files: &[PathBuf]) -> f64 {
         );
         worst = worst.max(file_worst);
     }
-    worst
+    (worst, worst_passive)
 }
 
 /// `τ = d/dt(∂T/∂q̇) − ∂T/∂q + ∂V/∂q` by central differences along `q(t) = q + q̇t + ½q̈t²`, with
@@ -400,6 +445,20 @@ fn bad_input_is_a_clear_error() {
             vec!["body \"head\"", "positive semi-definite"],
         ),
         (broken("<OpenSimDocument Version=\"40600\">", "<OpenSimDocument Version=\"30000\">"), vec!["OpenSim 3"]),
+        (
+            broken(
+                "<ForceSet name=\"forceset\">\n\t\t\t<objects />",
+                "<ForceSet name=\"forceset\">\n\t\t\t<objects><SpringGeneralizedForce name=\"neck_spring\"><coordinate>neck_cord_0</coordinate><stiffness>5</stiffness></SpringGeneralizedForce></objects>",
+            ),
+            vec!["neck_spring", "coordinate", "neck_cord_0", "neck_coord_0"],
+        ),
+        (
+            broken(
+                "<ForceSet name=\"forceset\">\n\t\t\t<objects />",
+                "<ForceSet name=\"forceset\">\n\t\t\t<objects><SpringGeneralizedForce name=\"neck_spring\"><coordinate>neck_coord_0</coordinate><stiffness>-5</stiffness></SpringGeneralizedForce></objects>",
+            ),
+            vec!["neck_spring", "stiffness", "not negative"],
+        ),
         (
             broken("<Body name=\"head\">", "<Body name=\"head\">\n<!-- -->").replacen(
                 "<PinJoint name=\"neck\">",

@@ -405,10 +405,11 @@ def reference(files):
     for path in files:
         name = os.path.basename(path)
         m = osim.Model(path)
-        # The skeleton only: no muscle's passive force, no actuator.
+        # The skeleton and its coordinate springs only: no muscle's passive force, no actuator.
         forces = m.updForceSet()
         for i in range(forces.getSize()):
-            forces.get(i).set_appliesForce(False)
+            if forces.get(i).getConcreteClassName() != "SpringGeneralizedForce":
+                forces.get(i).set_appliesForce(False)
         s = m.initSystem()
         matter = m.getMatterSubsystem()
         solver = osim.InverseDynamicsSolver(m)

@@ -4,7 +4,7 @@
 
 use super::function::Function;
 use super::joints::Drive;
-use super::reader::{OsimJoint, Parsed};
+use super::reader::{OsimJoint, Parsed, Spring};
 use super::{ChainDof, Coordinates};
 use crate::dynamics::kinematics::joint_transform;
 use crate::error::{Error, Result};
@@ -14,7 +14,7 @@ use crate::spatial::{Inertia, Transform};
 
 /// The model, its coordinates' coupling map, and notes on what was dropped.
 pub(super) fn build(parsed: Parsed, origin: &str) -> Result<(Model, Coordinates, Vec<String>)> {
-    let Parsed { name, gravity, bodies, joints, markers, mut ignored } = parsed;
+    let Parsed { name, gravity, bodies, joints, markers, springs, mut ignored } = parsed;
     let mut model = Model::new(name, bodies[0].name.clone());
     model.gravity = gravity;
     let mut coordinates = Coordinates { coordinates: vec![], chain: vec![] };
@@ -80,6 +80,9 @@ pub(super) fn build(parsed: Parsed, origin: &str) -> Result<(Model, Coordinates,
             placement: in_body.compose(&Transform::from_translation(m.location)),
         });
     }
+    for spring in &springs {
+        add_spring(&mut model, &coordinates, spring, origin, &mut ignored)?;
+    }
     for c in coordinates.coordinates.iter().filter(|c| c.locked) {
         ignored.push(format!(
             "coordinate \"{}\" is locked at {} in the file: kept free here (lock it in the task)",
@@ -93,6 +96,43 @@ pub(super) fn build(parsed: Parsed, origin: &str) -> Result<(Model, Coordinates,
         _ => Error::model(origin, p.element, p.message),
     })?;
     Ok((model, coordinates, ignored))
+}
+
+/// A coordinate spring as the passive spring and damper of the DOF that is the coordinate itself (springs on
+/// one coordinate add: `k = Σkᵢ`, `rest = Σkᵢrᵢ / k`, `d = Σdᵢ`); on a coordinate that drives coupled DOFs
+/// it is listed as ignored (a force on a coordinate is no single joint's torque there).
+fn add_spring(
+    model: &mut Model,
+    coordinates: &Coordinates,
+    spring: &Spring,
+    origin: &str,
+    ignored: &mut Vec<String>,
+) -> Result<()> {
+    let what = || format!("<SpringGeneralizedForce name=\"{}\"> <coordinate>", spring.name);
+    let Some(c) = coordinates.coordinates.iter().position(|k| k.name == spring.coordinate) else {
+        let names: Vec<&str> = coordinates.coordinates.iter().map(|k| k.name.as_str()).collect();
+        let message = crate::error::unknown_name("coordinate", &spring.coordinate, &names, |k| format!("\"{k}\""));
+        return Err(Error::model(format!("{origin}:{}", spring.line), what(), message));
+    };
+    let dofs: Vec<usize> = (0..coordinates.chain.len()).filter(|&k| coordinates.chain[k].coordinate == c).collect();
+    let [dof] = dofs[..] else {
+        ignored.push(format!(
+            "ForceSet: SpringGeneralizedForce \"{}\" on coordinate \"{}\", which drives {} DOFs (coupled): not modelled",
+            spring.name,
+            spring.coordinate,
+            dofs.len()
+        ));
+        return Ok(());
+    };
+    let p = &mut model.joints[dof + 1].passive;
+    let stiffness = p.stiffness + spring.stiffness;
+    if p.stiffness == 0.0 {
+        p.rest = spring.rest_length;
+    } else if stiffness > 0.0 {
+        p.rest = (p.stiffness * p.rest + spring.stiffness * spring.rest_length) / stiffness;
+    }
+    (p.stiffness, p.damping) = (stiffness, p.damping + spring.viscosity);
+    Ok(())
 }
 
 /// Adds joint `j`'s moving steps below `(parent body, F's parent frame in it)`; returns the model body that

@@ -3,7 +3,8 @@
 //! SpatialTransform's `rotation1` or `translation1`, driven by the coordinate of the joint's name through
 //! the identity), the parent offset frame the joint's placement (body-fixed X-Y-Z Euler angles), the child
 //! frame the body itself. The root body is welded to the ground. Named frames become markers. Coordinates
-//! carry the joint limits as ranges (rad or m), not clamped.
+//! carry the joint limits as ranges (rad or m), not clamped. Joint springs and dampers become
+//! SpringGeneralizedForces in the ForceSet.
 
 use crate::model::urdf_export::xml;
 use crate::model::{JointKind, Model};
@@ -44,6 +45,7 @@ pub fn to_osim(model: &Model) -> String {
     }
     let _ = writeln!(out, "    </objects></JointSet>");
     write_markers(&mut out, model);
+    write_springs(&mut out, model);
     let _ = writeln!(out, "  </Model>");
     let _ = writeln!(out, "</OpenSimDocument>");
     out
@@ -106,6 +108,26 @@ fn write_markers(out: &mut String, model: &Model) {
 }
 
 /// The OpenSim path of body `b`'s frame: the ground for a root called "ground", else `/bodyset/NAME`.
+/// Each joint's passive spring and damper as a SpringGeneralizedForce on its coordinate (OpenSim's
+/// `−stiffness·(q − rest_length) − viscosity·q̇`, the same law as [`crate::model::Passive`]).
+fn write_springs(out: &mut String, model: &Model) {
+    let passive: Vec<_> = model.joints.iter().skip(1).filter(|j| !j.passive.is_zero()).collect();
+    if passive.is_empty() {
+        return;
+    }
+    let _ = writeln!(out, "    <ForceSet name=\"forceset\"><objects>");
+    for j in passive {
+        let (name, p) = (xml(&j.name), &j.passive);
+        let _ = writeln!(out, "      <SpringGeneralizedForce name=\"{name}_passive\">");
+        let _ = writeln!(out, "        <coordinate>{name}</coordinate>");
+        let _ = writeln!(out, "        <stiffness>{}</stiffness>", numbers(&[p.stiffness]));
+        let _ = writeln!(out, "        <rest_length>{}</rest_length>", numbers(&[p.rest]));
+        let _ = writeln!(out, "        <viscosity>{}</viscosity>", numbers(&[p.damping]));
+        let _ = writeln!(out, "      </SpringGeneralizedForce>");
+    }
+    let _ = writeln!(out, "    </objects></ForceSet>");
+}
+
 fn path(model: &Model, b: usize) -> String {
     if b == 0 && model.bodies[0].name == "ground" {
         "/ground".into()

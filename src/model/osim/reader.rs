@@ -39,6 +39,17 @@ pub(super) struct Marker {
     pub location: Vec3,
 }
 
+/// A `SpringGeneralizedForce`: `f = −stiffness·(q − rest_length) − viscosity·q̇` on a coordinate.
+pub(super) struct Spring {
+    pub name: String,
+    pub line: u32,
+    pub coordinate: String,
+    /// N·m/rad or N/m; rad or m; N·m·s/rad or N·s/m.
+    pub stiffness: f64,
+    pub rest_length: f64,
+    pub viscosity: f64,
+}
+
 /// Everything the model is built from.
 pub(super) struct Parsed {
     pub name: String,
@@ -46,6 +57,8 @@ pub(super) struct Parsed {
     pub bodies: Vec<OsimBody>,
     pub joints: Vec<OsimJoint>,
     pub markers: Vec<Marker>,
+    /// The ForceSet's coordinate springs (the passive springs and dampers of a model's joints).
+    pub springs: Vec<Spring>,
     /// What is in the file and not modelled, one line each.
     pub ignored: Vec<String>,
 }
@@ -81,8 +94,13 @@ impl<'i> Cx<'_, 'i> {
             joints.push(self.joint(node, &bodies)?);
         }
         let markers = self.markers(model, &bodies)?;
+        let mut springs = Vec::new();
         for set in IGNORED_SETS {
             for node in self.objects(model, set) {
+                if *set == "ForceSet" && node.tag_name().name() == "SpringGeneralizedForce" {
+                    springs.push(self.spring(node)?);
+                    continue;
+                }
                 ignored.push(format!("{set}: {} \"{}\"", node.tag_name().name(), node.attribute("name").unwrap_or("")));
             }
         }
@@ -94,7 +112,30 @@ impl<'i> Cx<'_, 'i> {
         let gravity = self.fixed(model, "gravity", "<Model>", 3, &[0.0, -9.80665, 0.0])?;
         let gravity = Vec3::new(gravity[0], gravity[1], gravity[2]);
         ranges::GRAVITY.check_all(gravity.as_slice()).map_err(|m| self.err(model, "<Model> <gravity>", m))?;
-        Ok(Parsed { name: model.attribute("name").unwrap_or("osim").to_string(), gravity, bodies, joints, markers, ignored })
+        let name = model.attribute("name").unwrap_or("osim").to_string();
+        Ok(Parsed { name, gravity, bodies, joints, markers, springs, ignored })
+    }
+
+    /// `<SpringGeneralizedForce>`: its `coordinate`, `stiffness`, `rest_length` and `viscosity` (0 when absent;
+    /// SI, radians), each finite, stiffness and viscosity not negative.
+    fn spring(&self, node: Node) -> Result<Spring> {
+        let name = node.attribute("name").unwrap_or("").to_string();
+        let what = format!("<SpringGeneralizedForce name=\"{name}\">");
+        let coordinate = self
+            .text(node, "coordinate")
+            .ok_or_else(|| self.err(node, &what, "has no <coordinate>: which coordinate does it act on?"))?;
+        let [stiffness, rest_length, viscosity] =
+            ["stiffness", "rest_length", "viscosity"].map(|tag| self.scalar(node, tag, &what, 0.0));
+        let (stiffness, rest_length, viscosity) = (stiffness?, rest_length?, viscosity?);
+        for (tag, value) in [("stiffness", stiffness), ("viscosity", viscosity)] {
+            if !(value.is_finite() && value >= 0.0) {
+                return Err(self.err(node, &format!("{what} <{tag}>"), format!("{value} must be finite and not negative")));
+            }
+        }
+        if !rest_length.is_finite() {
+            return Err(self.err(node, &format!("{what} <rest_length>"), "must be finite"));
+        }
+        Ok(Spring { name, line: self.line(node), coordinate, stiffness, rest_length, viscosity })
     }
 
     /// The ground: a massless body (`<Ground name>`, "ground" when absent).
