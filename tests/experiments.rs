@@ -338,13 +338,6 @@ fn no_joint_rides_its_limits() {
         // The one-hand carry shifts the trunk towards the free side with an S: the lumbar spine bends 21°
         // towards it, the thoracic spine back by as much as its 20° lateral range lets it (shoulders level).
         ("one_hand_carry", "thoracic_x", "lower"),
-        // The overhead reach's end posture is solved for (frame goals at the hands) and the Moon's gravity makes
-        // the effort nearly indifferent to how: the plan found brings the arms up in front with the upper arms
-        // adducted onto their −30° end in the second half (both sides, 14 % of the reach); another optimum
-        // 0.02 % cheaper abducts them 38° and drifts forearm rotation and wrist deviation onto their ends
-        // instead (docs/experiments.md). Which one the solver lands in is not a property of the task.
-        ("moon_overhead_reach", "l_shoulder_x", "lower"),
-        ("moon_overhead_reach", "r_shoulder_x", "lower"),
     ];
     let mut failures = Vec::new();
     let mut ridden = Vec::new();

@@ -20,6 +20,8 @@ struct Measures {
     acceleration: f64,
     jerk: f64,
     strength: f64,
+    /// `∫Σ(qᵢ/ρᵢ)²`, `ρᵢ` the half range.
+    posture: f64,
 }
 
 /// The double pendulum raised to horizontal (common::TASK) with `objective` and `limits` sections.
@@ -37,6 +39,7 @@ fn planned(objective: &str, limits: &str, solver: Option<SolverKind>) -> (Measur
     let times: Vec<f64> = (0..=n).map(|k| k as f64 * dt).collect();
     let s = plan::sample(&task.spec, &p, &times).unwrap();
     let limit: Vec<f64> = task.spec.model.joints[1..].iter().map(|j| j.limits.effort).collect();
+    let half_range: Vec<f64> = task.spec.model.joints[1..].iter().map(|j| 0.5 * (j.limits.upper - j.limits.lower)).collect();
     let sq = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>();
     let diff = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| (x - y) / dt).collect::<Vec<f64>>();
     let m = Measures {
@@ -45,6 +48,7 @@ fn planned(objective: &str, limits: &str, solver: Option<SolverKind>) -> (Measur
         acceleration: s.iter().map(|x| sq(&x.qdd) * dt).sum(),
         jerk: s.windows(2).map(|w| sq(&diff(&w[1].qdd, &w[0].qdd)) * dt).sum(),
         strength: s.iter().map(|x| x.tau.iter().zip(&limit).map(|(t, l)| (t / l).powi(2)).sum::<f64>() * dt).sum(),
+        posture: s.iter().map(|x| x.q.iter().zip(&half_range).map(|(q, r)| (q / r).powi(2)).sum::<f64>() * dt).sum(),
     };
     (m, p.outcome.objective, task, p)
 }
@@ -66,6 +70,16 @@ fn acceleration_and_jerk_regularisers_make_the_motion_smoother() {
     assert!(acc.acceleration < 0.9 * torque.acceleration && acc.torque > torque.torque, "{acc:?} against {torque:?}");
     let (jerk, _, _, _) = planned("terms = { torque = 1.0, jerk = 5.0 }", LIMITS, None);
     assert!(jerk.jerk < 0.9 * torque.jerk && jerk.torque > torque.torque, "{jerk:?} against {torque:?}");
+}
+
+/// The posture term keeps the joints nearer the neutral posture (in units of their ranges) than the
+/// minimum-torque plan does, for more torque; its value in summary terms is the discrete integral.
+#[test]
+fn the_posture_term_keeps_joints_nearer_neutral() {
+    let (torque, _, _, _) = planned("", LIMITS, None);
+    let (posture, _, _, _) = planned("terms = { torque = 1.0, posture = 50000.0 }", LIMITS, None);
+    assert!(posture.posture < 0.95 * torque.posture, "∫Σ(q/ρ)²: {posture:?} against {torque:?}");
+    assert!(posture.torque > torque.torque, "∫τ²: {posture:?} against {torque:?}");
 }
 
 #[test]

@@ -103,7 +103,7 @@ fn random_spec(seed: u64, n: usize, zero_end_velocity: bool) -> Spec {
         spec.collisions.push(Collision { body: n, other: Collider::Body(1), margin: 0.01 });
     }
     // Every term of the objective, so that their rows are checked too.
-    spec.terms = Terms { torque: 0.7, strength: 30.0, torque_change: 0.02, acceleration: 0.3, jerk: 0.01 };
+    spec.terms = Terms { torque: 0.7, strength: 30.0, torque_change: 0.02, acceleration: 0.3, jerk: 0.01, posture: 0.4 };
     // Check nodes of the refinement between the nodes: limit rows and closures at extra times.
     spec.check_nodes = CheckNodes { limits: vec![0.37, 0.81], closures: vec![0.52] };
     spec

@@ -63,7 +63,7 @@ pub struct Summary {
 /// One term of the objective.
 #[derive(Serialize, Debug, Clone)]
 pub struct TermSummary {
-    /// Its name in the task file (`torque`, `strength`, `torque_change`, `acceleration`, `jerk`).
+    /// Its name in the task file (`torque`, `strength`, `torque_change`, `acceleration`, `jerk`, `posture`).
     pub name: String,
     /// Its formula.
     pub formula: String,

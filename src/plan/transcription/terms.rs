@@ -2,6 +2,7 @@
 //!
 //! ```text
 //!   c_τ ½∫τᵀWτ dt  +  c_s ½∫Σᵢ (τᵢ/τᵢ,max)² dt  +  c_Δ ½∫τ̇ᵀτ̇ dt  +  c_a ½∫q̈ᵀq̈ dt  +  c_j ½∫q⃛ᵀq⃛ dt
+//!   +  c_p ½∫Σᵢ (qᵢ/ρᵢ)² dt
 //! ```
 //!
 //! as residuals of `½‖r‖²`, after the node residuals of [`super::Transcription`]:
@@ -14,7 +15,11 @@
 //!   second-order term stays node-wise (`φₖ` gains `±w c` on `τ` at both nodes);
 //! - `√(c_a wₖ) q̈(tₖ)` at the Gauss nodes: exact, `q̈²` is quadratic on each span;
 //! - `√(c_j h) q⃛` per knot span: a cubic's `q⃛` is constant on a span, so this is the exact integral,
-//!   linear in the control points (`q⃛ = (q̈(t₂) − q̈(t₁))/(t₂ − t₁)` for any two times of the span).
+//!   linear in the control points (`q⃛ = (q̈(t₂) − q̈(t₁))/(t₂ − t₁)` for any two times of the span);
+//! - `√(c_p wₖ) qᵢ(tₖ)/ρᵢ` at the Gauss nodes, `ρᵢ` joint `i`'s half range (joints without both limits
+//!   left out): the posture away from the figure's neutral `q = 0` in units of each range, linear in the
+//!   control points — the joint-displacement discomfort of human posture prediction (Yang, Marler et al.
+//!   2004), which keeps an underdetermined posture (a goal given only as a hand position) off its ranges' ends.
 
 use super::Transcription;
 use crate::solve::{Evaluation, Patterns};
@@ -36,38 +41,46 @@ pub struct Terms {
     pub acceleration: f64,
     /// `½∫q⃛ᵀq⃛ dt`, jerk (rad²/s⁵). Default 0.
     pub jerk: f64,
+    /// `½∫Σᵢ(qᵢ/ρᵢ)² dt`: each joint's distance from the neutral posture `q = 0` in units of its half range
+    /// `ρᵢ = (upperᵢ − lowerᵢ)/2`, joints without both limits left out (s). Default 0.
+    pub posture: f64,
 }
 
 impl Default for Terms {
     fn default() -> Self {
-        Terms { torque: 1.0, strength: 0.0, torque_change: 0.0, acceleration: 0.0, jerk: 0.0 }
+        Terms { torque: 1.0, strength: 0.0, torque_change: 0.0, acceleration: 0.0, jerk: 0.0, posture: 0.0 }
     }
 }
 
 impl Terms {
     /// Each term's name and weight, in the order of [`Transcription::term_values`].
-    pub fn named(&self) -> [(&'static str, f64); 5] {
+    pub fn named(&self) -> [(&'static str, f64); 6] {
         [
             ("torque", self.torque),
             ("strength", self.strength),
             ("torque_change", self.torque_change),
             ("acceleration", self.acceleration),
             ("jerk", self.jerk),
+            ("posture", self.posture),
         ]
     }
 
     /// Each term's formula, in the order of [`Transcription::term_values`].
-    pub const FORMULAS: [&'static str; 5] = ["½∫τᵀWτ dt", "½∫Σ(τᵢ/τᵢ,max)² dt", "½∫τ̇ᵀτ̇ dt", "½∫q̈ᵀq̈ dt", "½∫q⃛ᵀq⃛ dt"];
+    pub const FORMULAS: [&'static str; 6] =
+        ["½∫τᵀWτ dt", "½∫Σ(τᵢ/τᵢ,max)² dt", "½∫τ̇ᵀτ̇ dt", "½∫q̈ᵀq̈ dt", "½∫q⃛ᵀq⃛ dt", "½∫Σ(qᵢ/ρᵢ)² dt"];
 }
 
 /// Where the terms' rows sit in `r`, and their scratch (allocated once).
 #[derive(Default)]
 pub(super) struct TermWork {
-    /// First residual of the acceleration rows, torque-change rows and jerk rows; their end.
+    /// First residual of the acceleration rows, torque-change rows, jerk rows and posture rows; their end.
     acceleration: usize,
     torque_change: usize,
     jerk: usize,
+    posture: usize,
     end: usize,
+    /// `1/ρᵢ` of each joint for the posture rows (0: no range).
+    inv_range: Vec<f64>,
     /// Two times of each knot span for its `q⃛`, and their distance.
     spans: Vec<(BasisAt, BasisAt, f64)>,
     /// Each node's Jacobian columns (`motion ++ λ`), the torque row's values, the previous node's torques.
@@ -93,10 +106,23 @@ impl TermWork {
         } else {
             vec![]
         };
-        let end = jerk + spans.len() * nv;
+        let posture = jerk + spans.len() * nv;
+        let end = posture + if terms.posture > 0.0 { nn * nv } else { 0 };
+        let inv_range = t.spec.model.joints[1..]
+            .iter()
+            .map(|j| {
+                let half = 0.5 * (j.limits.upper - j.limits.lower);
+                if half.is_finite() && half > 0.0 {
+                    1.0 / half
+                } else {
+                    0.0
+                }
+            })
+            .collect();
         let columns = t.nodes.basis.iter().map(|b| t.node_columns(b)).map(|(m, l)| m.into_iter().chain(l).collect()).collect();
         let width = 4 * (nv + t.layout.n_lambda);
-        TermWork { acceleration, torque_change, jerk, end, spans, columns, chain: vec![0.0; width], previous: vec![0.0; nv] }
+        let (chain, previous) = (vec![0.0; width], vec![0.0; nv]);
+        TermWork { acceleration, torque_change, jerk, posture, end, inv_range, spans, columns, chain, previous }
     }
 
     /// Residual rows in all (node residuals included).
@@ -106,6 +132,10 @@ impl TermWork {
 
     fn has_acceleration(&self) -> bool {
         self.torque_change > self.acceleration
+    }
+
+    fn has_posture(&self) -> bool {
+        self.end > self.posture
     }
 
     fn pairs(&self) -> usize {
@@ -133,6 +163,12 @@ impl Transcription<'_> {
                 p.r.push(self.joint_columns(b.first, i));
             }
         }
+        if tw.has_posture() {
+            for k in 0..self.nodes.t.len() {
+                let first = self.nodes.basis[k].first;
+                (0..nv).for_each(|i| p.r.push(self.joint_columns(first, i)));
+            }
+        }
     }
 
     /// The columns of joint `i` at the four control points from `first`: one per unknown (a control point
@@ -158,6 +194,23 @@ impl Transcription<'_> {
                     for (a, slot) in self.layout.motion_slots(basis.first).iter().enumerate() {
                         if let Some(slot) = slot {
                             vals[*slot] += s * basis.ddb[a];
+                        }
+                    }
+                }
+            }
+        }
+        if tw.has_posture() {
+            // √(c_p wₖ) qᵢ/ρᵢ: the values of the basis.
+            let s = (self.spec.terms.posture * self.nodes.w[k]).sqrt();
+            for i in 0..nv {
+                let (row, si) = (tw.posture + k * nv + i, s * tw.inv_range[i]);
+                out.r[row] = si * self.work.q[i];
+                if want_jac {
+                    let vals = out.jr.row_values_mut(row);
+                    vals.fill(0.0);
+                    for (a, slot) in self.layout.motion_slots(basis.first).iter().enumerate() {
+                        if let Some(slot) = slot {
+                            vals[*slot] += si * basis.b[a];
                         }
                     }
                 }
@@ -235,8 +288,8 @@ impl Transcription<'_> {
     }
 
     /// Each term's weight and unweighted value at `x` (the discrete integrals that are minimised):
-    /// `[torque, strength, torque_change, acceleration, jerk]` as [`Terms::FORMULAS`] lists them.
-    pub fn term_values(&mut self, x: &[f64]) -> Result<[(&'static str, f64, f64); 5], String> {
+    /// `[torque, strength, torque_change, acceleration, jerk, posture]` as [`Terms::FORMULAS`] lists them.
+    pub fn term_values(&mut self, x: &[f64]) -> Result<[(&'static str, f64, f64); 6], String> {
         use crate::solve::Problem;
         let dims = self.dims();
         let mut eval = Evaluation::new(dims, &self.jacobian_patterns()).map_err(|e| e.to_string())?;
@@ -266,7 +319,8 @@ impl Transcription<'_> {
             ("strength", terms.strength, strength),
             ("torque_change", terms.torque_change, per(terms.torque_change, half_sum(tw.torque_change..tw.jerk))),
             ("acceleration", terms.acceleration, per(terms.acceleration, half_sum(tw.acceleration..tw.torque_change))),
-            ("jerk", terms.jerk, per(terms.jerk, half_sum(tw.jerk..tw.end))),
+            ("jerk", terms.jerk, per(terms.jerk, half_sum(tw.jerk..tw.posture))),
+            ("posture", terms.posture, per(terms.posture, half_sum(tw.posture..tw.end))),
         ])
     }
 }
