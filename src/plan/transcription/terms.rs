@@ -189,13 +189,7 @@ impl Transcription<'_> {
                 let row = tw.acceleration + k * nv + i;
                 out.r[row] = s * self.work.qdd[i];
                 if want_jac {
-                    let vals = out.jr.row_values_mut(row);
-                    vals.fill(0.0);
-                    for (a, slot) in self.layout.motion_slots(basis.first).iter().enumerate() {
-                        if let Some(slot) = slot {
-                            vals[*slot] += s * basis.ddb[a];
-                        }
-                    }
+                    basis_row(&self.layout, basis.first, out.jr.row_values_mut(row), |a| s * basis.ddb[a]);
                 }
             }
         }
@@ -206,13 +200,7 @@ impl Transcription<'_> {
                 let (row, si) = (tw.posture + k * nv + i, s * tw.inv_range[i]);
                 out.r[row] = si * self.work.q[i];
                 if want_jac {
-                    let vals = out.jr.row_values_mut(row);
-                    vals.fill(0.0);
-                    for (a, slot) in self.layout.motion_slots(basis.first).iter().enumerate() {
-                        if let Some(slot) = slot {
-                            vals[*slot] += si * basis.b[a];
-                        }
-                    }
+                    basis_row(&self.layout, basis.first, out.jr.row_values_mut(row), |a| si * basis.b[a]);
                 }
             }
         }
@@ -245,6 +233,17 @@ impl Transcription<'_> {
     }
 }
 
+/// A row linear in one joint's four control points from `first`: `vals` (its values, in the order of
+/// [`super::Layout::motion_slots`]) `= Σₐ coefficient(a)` over the points that are unknowns.
+fn basis_row(layout: &super::Layout, first: usize, vals: &mut [f64], coefficient: impl Fn(usize) -> f64) {
+    vals.fill(0.0);
+    for (a, slot) in layout.motion_slots(first).iter().enumerate() {
+        if let Some(slot) = slot {
+            vals[*slot] += coefficient(a);
+        }
+    }
+}
+
 impl Transcription<'_> {
     /// The jerk rows `√(c_j h) q⃛ᵢ` of every knot span.
     pub(super) fn jerk_rows(&mut self, want_jac: bool, out: &mut Evaluation) {
@@ -257,13 +256,7 @@ impl Transcription<'_> {
                 let row = self.terms.jerk + span * nv + i;
                 out.r[row] = s * (0..4).map(|a| third(a) * self.ctrl[(b1.first + a) * nv + i]).sum::<f64>();
                 if want_jac {
-                    let vals = out.jr.row_values_mut(row);
-                    vals.fill(0.0);
-                    for (a, slot) in self.layout.motion_slots(b1.first).iter().enumerate() {
-                        if let Some(slot) = slot {
-                            vals[*slot] += s * third(a);
-                        }
-                    }
+                    basis_row(&self.layout, b1.first, out.jr.row_values_mut(row), |a| s * third(a));
                 }
             }
         }
