@@ -31,15 +31,18 @@ impl From<SplineArg> for inverse::Spline {
     }
 }
 
-/// The model of `mintorque inverse`: a coupled `.osim` keeps its coordinates (its forces are theirs),
-/// any other model file is read by `load` as every command reads it.
+/// The model of `mintorque inverse`: a coupled `.osim` keeps its coordinates (its forces are theirs), an
+/// uncoupled one is its chain (read once, its ignored parts noted), any other model file is read by `load`
+/// as every command reads it.
 pub fn subject(path: &Path, load: impl FnOnce(&Path) -> Result<Model>) -> Result<Subject> {
     if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("osim")) {
+        // Read once: coupled, it keeps its coordinates; uncoupled, its chain is the model.
         let osim = mintorque::model::osim::load(path)?;
+        osim.ignored.iter().for_each(|note| eprintln!("note: {}: ignored {note}", path.display()));
         if osim.coordinates.is_coupled() {
-            osim.ignored.iter().for_each(|note| eprintln!("note: {}: ignored {note}", path.display()));
             return Ok(Subject::Coupled(Box::new(osim)));
         }
+        return Ok(Subject::Joints(osim.into_model(&path.display().to_string())?));
     }
     load(path).map(Subject::Joints)
 }
