@@ -4,7 +4,7 @@
 
 use super::{LevenbergMarquardt, SecondOrder, Step, MAX_DAMPING, MIN_DAMPING, NOISE};
 use crate::solve::auglag::AugmentedLagrangian;
-use crate::solve::line_search::EvalError;
+use crate::solve::line_search::{dot, EvalError};
 
 impl LevenbergMarquardt {
     /// Factorises `JᵀJ + νD`, raising `ν` until that succeeds.
@@ -44,7 +44,7 @@ impl LevenbergMarquardt {
         value: f64,
         trial: f64,
     ) -> Result<Option<(f64, f64)>, String> {
-        let slope: f64 = self.gradient.iter().zip(&self.step).map(|(g, d)| g * d).sum();
+        let slope = dot(&self.gradient, &self.step);
         let damped: f64 = self.shift.iter().zip(&self.step).map(|(s, d)| s * d * d).sum();
         let curvature = -slope - damped;
         let alpha = if trial.is_finite() && trial - value - slope > 0.0 {
@@ -97,7 +97,7 @@ impl LevenbergMarquardt {
             if !moved || predicted.is_nan() || predicted <= 0.0 {
                 return Step::Stalled;
             }
-            let trial = match al.evaluate(&self.x_trial, true) {
+            let mut trial = match al.evaluate(&self.x_trial, true) {
                 Ok(()) => al.value(),
                 Err(EvalError::Failed(m)) => return Step::Error(m),
                 Err(EvalError::NonFinite(_)) => f64::INFINITY,
@@ -119,17 +119,14 @@ impl LevenbergMarquardt {
                             .sum::<f64>();
                 }
             }
-            let mut gain = actual / predicted;
-            let mut value_trial = trial;
-            let mut shortened = false;
+            let (mut gain, mut shortened) = (actual / predicted, false);
             if !(gain > 0.0 && trial.is_finite()) {
                 match self.shortened(al, x, value, trial) {
-                    Ok(Some((t, g))) => (value_trial, gain, shortened) = (t, g, true),
+                    Ok(Some((t, g))) => (trial, gain, shortened) = (t, g, true),
                     Ok(None) => {}
                     Err(m) => return Step::Error(m),
                 }
             }
-            let trial = value_trial;
             if gain > 0.0 && trial.is_finite() {
                 if let SecondOrder::Secant(term) = &mut self.second_order {
                     term.update(&self.x_trial, &al.eval, al.gradient_weights());
