@@ -59,13 +59,13 @@ pub struct FilterSummary {
 }
 
 /// The summary of `inverse` of `motion` on `model` (the coordinates' table of a coupled model, whose
-/// chain is `chain`).
+/// chain is `chain`), under the external `loads`, whose joint loads are `series` ([`joint_loads`]).
 pub fn summary(
     model: &Model,
     chain: Option<&Model>,
     inverse: &Inverse,
     motion: &str,
-    loads: Option<&Loads>,
+    (loads, series): (Option<&Loads>, &LoadSeries),
 ) -> crate::Result<InverseSummary> {
     let r = &inverse.record;
     let span = [r.samples.first().map_or(0.0, |s| s.t), r.samples.last().map_or(0.0, |s| s.t)];
@@ -88,7 +88,7 @@ pub fn summary(
         },
         forces_of: if inverse.chain.is_some() { "coordinates (coupled model: Gᵀ τ_chain)" } else { "joints" },
         gravity: r.gravity,
-        ergonomics: report(model, r, chained(model, chain, inverse), loads)?,
+        ergonomics: report(model, r, chained(model, chain, inverse), series)?,
     })
 }
 
@@ -110,36 +110,37 @@ fn chained<'a>(model: &'a Model, chain: Option<&'a Model>, inverse: &'a Inverse)
     }
 }
 
-/// The joint loads of the chain's motion under gravity and the external `loads` (at each sample's time).
-fn joint_load_series(chain: &Model, record: &PlanRecord, loads: Option<&Loads>) -> crate::Result<LoadSeries> {
+/// The joint loads of the motion (of a coupled model's chain) under gravity and the external `loads` (at
+/// each sample's time), for [`summary`] and [`render`].
+pub fn joint_loads(model: &Model, chain: Option<&Model>, inverse: &Inverse, loads: Option<&Loads>) -> crate::Result<LoadSeries> {
+    let (chain, record) = chained(model, chain, inverse);
     ergonomics::loads::series_under(chain, record, |s, data| loads.map_or(Vec::new(), |l| l.wrenches(chain, data, s.t)))
 }
 
 /// The ergonomic report of the processed motion (per joint or coordinate of `model`), with the L5/S1
 /// load of the joint named `lumbar` when the chain has one (as the planner's default), from the chain's
-/// joint loads (the external `loads` included).
+/// joint loads `series` (the external loads included).
 fn report(
     model: &Model,
     record: &PlanRecord,
     (chain, chain_record): (&Model, &PlanRecord),
-    loads: Option<&Loads>,
+    series: &LoadSeries,
 ) -> crate::Result<Ergonomics> {
     let mut report = ergonomics::ergonomics(model, record, &BTreeMap::new())?;
     if let Some(lumbar) = chain.dof_index("lumbar") {
-        let series = joint_load_series(chain, chain_record, loads)?;
-        report.low_back = Some(ergonomics::lumbar::low_back(chain, chain_record, &series, lumbar));
+        report.low_back = Some(ergonomics::lumbar::low_back(chain, chain_record, series, lumbar));
     }
     Ok(report)
 }
 
 /// Every file of the output directory but the manifest, by name; the plots unless `no_plots`. `model`
-/// names the record's joints (a coupled model's coordinates, its chain `chain`); the joint loads include
-/// the external `loads`.
+/// names the record's joints (a coupled model's coordinates, its chain `chain`); `series` the joint loads
+/// ([`joint_loads`]).
 pub fn render(
     model: &Model,
     chain: Option<&Model>,
     inverse: &Inverse,
-    loads: Option<&Loads>,
+    series: &LoadSeries,
     summary: &InverseSummary,
     no_plots: bool,
 ) -> crate::Result<BTreeMap<String, Vec<u8>>> {
@@ -149,15 +150,14 @@ pub fn render(
     files.insert("inverse_dynamics.csv".to_string(), csv(model, r, &Default::default())?.into_bytes());
     files.insert("q_filtered.mot".to_string(), mot::mot(model, r).into_bytes());
     let (chain, chain_record) = chained(model, chain, inverse);
-    let series = joint_load_series(chain, chain_record, loads)?;
-    files.insert("joint_loads.csv".to_string(), ergonomics::loads::csv(chain, chain_record, &series).into_bytes());
+    files.insert("joint_loads.csv".to_string(), ergonomics::loads::csv(chain, chain_record, series).into_bytes());
     let mut text =
         serde_json::to_string_pretty(summary).map_err(|e| crate::Error::input("summary.json", "serialising", e.to_string()))?;
     text.push('\n');
     files.insert("summary.json".to_string(), text.into_bytes());
     if !no_plots {
         files.extend(plots::plots_labelled(model, r, None, "inverse dynamics")?);
-        files.extend(ergonomics::plots::plots(chain, chain_record, Some(&series), &summary.ergonomics)?);
+        files.extend(ergonomics::plots::plots(chain, chain_record, Some(series), &summary.ergonomics)?);
     }
     Ok(files)
 }

@@ -76,8 +76,9 @@ pub fn run(subject: &Subject, a: &Args) -> Result<()> {
         Subject::Joints(model) => inverse::inverse_dynamics(model, &motion, &a.settings, loads.as_ref())?,
         Subject::Coupled(osim) => coupled::inverse_dynamics(osim, &motion, &a.settings, loads.as_ref())?,
     };
-    let summary = files::summary(&names, chain, &result, &a.motion.display().to_string(), loads.as_ref())?;
-    let rendered = files::render(&names, chain, &result, loads.as_ref(), &summary, a.no_plots)?;
+    let series = files::joint_loads(&names, chain, &result, loads.as_ref())?;
+    let summary = files::summary(&names, chain, &result, &a.motion.display().to_string(), (loads.as_ref(), &series))?;
+    let rendered = files::render(&names, chain, &result, &series, &summary, a.no_plots)?;
     plan_dir::write_files(a.out, &rendered, &WriteOptions::default())?;
     if !a.quiet {
         let filter = match (a.settings.filter_hz, a.settings.spline) {
