@@ -164,9 +164,10 @@ impl Transcription<'_> {
             }
         }
         if tw.has_posture() {
+            // A joint without a range has an empty (zero) row: nothing for the Gram matrix to add.
             for k in 0..self.nodes.t.len() {
                 let first = self.nodes.basis[k].first;
-                (0..nv).for_each(|i| p.r.push(self.joint_columns(first, i)));
+                (0..nv).for_each(|i| p.r.push(if tw.inv_range[i] > 0.0 { self.joint_columns(first, i) } else { vec![] }));
             }
         }
     }
@@ -199,7 +200,7 @@ impl Transcription<'_> {
             for i in 0..nv {
                 let (row, si) = (tw.posture + k * nv + i, s * tw.inv_range[i]);
                 out.r[row] = si * self.work.q[i];
-                if want_jac {
+                if want_jac && tw.inv_range[i] > 0.0 {
                     basis_row(&self.layout, basis.first, out.jr.row_values_mut(row), |a| si * basis.b[a]);
                 }
             }
