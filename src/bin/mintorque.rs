@@ -20,6 +20,7 @@ use mintorque::plan::task::Overrides;
 use mintorque::plan::{self, task::Task, SolverKind};
 use mintorque::plan_dir::{self, PlanContents, WriteOptions};
 use mintorque::report;
+use mintorque::solve::Trace;
 use mintorque::spatial::Vec3;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -59,9 +60,16 @@ fn load_model(path: &Path, read: ModelArgs) -> Result<mintorque::Model> {
     })
 }
 
-/// Plans a task (overrides applied, settings checked), reporting why it did not converge if it did not.
-fn solve(task: &mut Task, quiet: bool) -> Result<plan::Plan> {
-    let (bar, mut observer) = progress::spinner(quiet);
+/// Plans a task (overrides applied, settings checked), reporting why it did not converge if it did not;
+/// records the solver's iterations into `trace` when given.
+fn solve(task: &mut Task, quiet: bool, mut trace: Option<&mut Trace>) -> Result<plan::Plan> {
+    let (bar, mut show) = progress::spinner(quiet);
+    let mut observer = |p: &mintorque::solve::Progress| {
+        show(p);
+        if let Some(t) = trace.as_deref_mut() {
+            t.record(p);
+        }
+    };
     let planned = task.plan(&mut observer)?;
     if let Some(b) = bar {
         b.finish_and_clear();
@@ -72,20 +80,29 @@ fn solve(task: &mut Task, quiet: bool) -> Result<plan::Plan> {
     Ok(planned)
 }
 
+/// What `plan` prints and writes besides the plan.
+struct PlanOutputs {
+    quiet: bool,
+    no_plots: bool,
+    /// Write the solver's iteration log as `trace.csv`.
+    trace: bool,
+}
+
 fn run_plan(
     task_path: &Path,
     out: &Path,
     overrides: &Overrides,
     warm_start: Option<&Path>,
-    quiet: bool,
-    no_plots: bool,
+    outputs: PlanOutputs,
 ) -> Result<bool> {
+    let PlanOutputs { quiet, no_plots, trace } = outputs;
     let mut task = Task::load_with(task_path, overrides)?;
     if let Some(dir) = warm_start {
         plan_dir::warm_start(&mut task, dir)?;
     }
-    let planned = solve(&mut task, quiet)?;
-    let contents = PlanContents::from_task(&task, &planned, no_plots)?;
+    let mut trace = trace.then(Trace::new);
+    let planned = solve(&mut task, quiet, trace.as_mut())?;
+    let contents = PlanContents { trace, ..PlanContents::from_task(&task, &planned, no_plots)? };
     let (bar, mut report) = progress::writing(quiet);
     let written = plan_dir::write_reporting(out, &contents, &WriteOptions::default(), &mut report);
     if let Some(b) = bar {
@@ -162,7 +179,7 @@ fn run_simulate(path: &Path, steps: u64) -> Result<bool> {
         (task, x, format!("plan of {}{}", path.display(), if converged { "" } else { " (NOT converged)" }), converged)
     } else {
         let mut task = Task::load(path)?;
-        let planned = solve(&mut task, true)?;
+        let planned = solve(&mut task, true, None)?;
         let status = if planned.converged() { "plan converged" } else { "plan NOT converged" };
         let converged = planned.converged();
         (task, planned.x, status.to_string(), converged)
@@ -203,14 +220,15 @@ fn run_dynamics(model: &Path, read: ModelArgs, states: Option<PathBuf>, gravity:
 
 fn run(cli: Cli) -> Result<ExitCode> {
     match cli.command {
-        Command::Plan { task, out, solver, control_points, starts, refine, warm_start, quiet, no_plots } => {
+        Command::Plan { task, out, solver, control_points, starts, refine, warm_start, quiet, no_plots, trace } => {
             let solver = solver.map(|s| match s {
                 SolverArg::Structured => SolverKind::Structured,
                 SolverArg::Newton => SolverKind::Newton,
                 SolverArg::AuglagBfgs => SolverKind::AuglagBfgs,
             });
             let overrides = Overrides { solver, control_points, starts, refine };
-            Ok(exit(run_plan(&task, &out, &overrides, warm_start.as_deref(), quiet, no_plots)?))
+            let outputs = PlanOutputs { quiet, no_plots, trace };
+            Ok(exit(run_plan(&task, &out, &overrides, warm_start.as_deref(), outputs)?))
         }
         Command::Sweep { sweep: file, out, keep_plans, quiet } => Ok(exit(sweep::run(&file, &out, keep_plans, quiet)?)),
         Command::Export { dir, format, out, fps, units, channels, angles, columns, joints, rate } => {

@@ -31,6 +31,8 @@ pub struct PlanContents {
     pub guess: Option<Vec<SampleRecord>>,
     /// The camera of `filmstrip.svg` / `.png`.
     pub filmstrip_view: View,
+    /// The solver's iteration log, written as `trace.csv` when given (`plan --trace`).
+    pub trace: Option<crate::solve::Trace>,
 }
 
 impl PlanContents {
@@ -46,6 +48,7 @@ impl PlanContents {
             plots: false,
             guess: None,
             filmstrip_view: View::Side,
+            trace: None,
         }
     }
 
@@ -85,6 +88,7 @@ impl PlanContents {
             plots,
             guess,
             filmstrip_view: view,
+            trace: None,
         })
     }
 
@@ -137,6 +141,9 @@ impl PlanContents {
         files.insert("model.figure.toml".to_string(), figure::to_toml(model).into_bytes());
         files.insert("trajectory.csv".to_string(), report::export::csv::csv(model, record, &Default::default())?.into_bytes());
         files.insert("torques.sto".to_string(), report::export::mot::torques_sto(model, record).into_bytes());
+        if let Some(trace) = &self.trace {
+            files.insert("trace.csv".to_string(), trace.to_csv().into_bytes());
+        }
         if let Some(series) = &self.joint_loads {
             files.insert("joint_loads.csv".to_string(), ergonomics::loads::csv(model, record, series).into_bytes());
         }

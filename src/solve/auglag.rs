@@ -135,6 +135,8 @@ pub(crate) struct AugmentedLagrangian<'a> {
     limit_hit: Option<Limit>,
     stall: StallWatch,
     stall_window: usize,
+    /// What the inner solver reports of its model and damping (see [`Progress::model`]).
+    pub(crate) inner_model: (&'static str, f64),
 }
 
 impl<'a> AugmentedLagrangian<'a> {
@@ -348,6 +350,8 @@ impl<'a> AugmentedLagrangian<'a> {
             violation: self.violation().0,
             stationarity: iterate.gradient_norm / (1.0 + objective.abs()),
             penalty: self.penalty,
+            model: self.inner_model.0,
+            damping: self.inner_model.1,
         };
         (self.observer)(&progress);
         if self.deadline.is_some_and(|d| Instant::now() >= d) || self.cancel.raised() {

@@ -141,6 +141,17 @@ enum SecondOrder {
     Secant(Box<SecondOrderTerm>),
 }
 
+impl SecondOrder {
+    /// The model's name in [`crate::solve::Progress::model`].
+    fn name(&self) -> &'static str {
+        match self {
+            SecondOrder::None => "gauss-newton",
+            SecondOrder::Problem | SecondOrder::Exact { .. } => "second-order",
+            SecondOrder::Secant(_) => "secant",
+        }
+    }
+}
+
 enum Step {
     Accepted { value: f64 },
     Stalled,
@@ -259,6 +270,7 @@ impl InnerSolver for LevenbergMarquardt {
         loop {
             // Here `al` was last evaluated at `x`.
             let gradient_norm = norm_inf(&self.gradient);
+            al.inner_model = (self.second_order.name(), self.damping);
             let go_on = al.iteration_done(&Iterate { iteration: iterations, x, f: value, gradient_norm });
             if gradient_norm <= tolerance * al.gradient_scale() {
                 return report(InnerStatus::Converged, iterations);

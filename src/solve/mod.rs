@@ -21,6 +21,7 @@ mod partitioned;
 pub mod problem;
 pub mod solver;
 pub mod sparse;
+pub mod trace;
 
 #[cfg(test)]
 mod tests;
@@ -33,3 +34,4 @@ pub use line_search::{EvalError, Iterate, LineSearch, Objective};
 pub use problem::{ConstraintKind, Dims, Evaluation, Patterns, Problem, ProblemError, RowFamily, Scales};
 pub use solver::{Cancel, ConstraintRef, Multipliers, Outcome, Progress, Settings, Solver, StopReason};
 pub use sparse::{PatternError, SparseMatrix};
+pub use trace::Trace;

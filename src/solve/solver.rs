@@ -130,6 +130,11 @@ pub struct Progress {
     pub stationarity: f64,
     /// Current `w_p`.
     pub penalty: f64,
+    /// The inner solver's model for the step just taken: `"gauss-newton"`, `"second-order"` (the exact
+    /// term), `"secant"` (the partitioned approximation) or `"bfgs"`.
+    pub model: &'static str,
+    /// Levenberg–Marquardt's damping `ν` after the step (NaN for BFGS).
+    pub damping: f64,
 }
 
 /// A constraint, identified and named.

@@ -40,6 +40,10 @@ pub(crate) enum Command {
         /// Skip the plots.
         #[arg(long)]
         no_plots: bool,
+        /// Also write the solver's iteration log, OUT/trace.csv: a row per accepted step of the first start
+        /// (objective, violation, stationarity, penalty, model, damping, seconds).
+        #[arg(long)]
+        trace: bool,
     },
     /// Plan a base task for every combination of the values of some of its fields (docs/sweeps.md), on all
     /// cores, into a table: OUT/sweep.csv and sweep.parquet, one row per plan, and plots against each value.

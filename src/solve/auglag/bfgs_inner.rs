@@ -24,6 +24,7 @@ impl InnerSolver for BfgsInner {
         max_iterations: usize,
     ) -> InnerReport {
         let settings = BfgsSettings { max_iterations, gradient_tolerance: tolerance, line_search: self.line_search };
+        al.inner_model = ("bfgs", f64::NAN);
         let report = self.bfgs.minimise(al, x, &settings);
         let status = match report.status {
             BfgsStatus::Converged => InnerStatus::Converged,

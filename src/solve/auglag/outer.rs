@@ -178,6 +178,7 @@ impl<'a> AugmentedLagrangian<'a> {
             limit_hit: None,
             stall: StallWatch { gradient_norm: f64::INFINITY, value: f64::INFINITY, since: 0 },
             stall_window: usize::MAX,
+            inner_model: ("", f64::NAN),
         })
     }
 }
