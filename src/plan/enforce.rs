@@ -15,6 +15,10 @@ use crate::error::Result;
 use crate::solve::{Multipliers, Outcome, Problem, Progress, Settings, StopReason};
 use std::time::Instant;
 
+/// A warm re-solve whose scaled violation grows past this multiple of its start's has diverged
+/// ([`Settings::warm_divergence`]).
+const WARM_DIVERGENCE: f64 = 100.0;
+
 /// The result of [`enforce`].
 pub(super) struct Enforced {
     /// The last solve (its iterations and evaluations summed over the rounds).
@@ -71,7 +75,15 @@ pub(super) fn enforce(
             // augmented Lagrangian can crawl at the penalty it ended with), solve again from the guess,
             // cold, with the check nodes — within what is left of the one budget.
             let cap = left.min(first_iterations.max(100));
-            let warm = Settings { warm_start: Some(warm), max_iterations: cap, ..settings.clone() };
+            // A warm re-solve that goes astray is abandoned for the cold one (the twist lift's did, twice,
+            // to a violation 800× its start — 190 iterations each — with multipliers grown large against
+            // its nearly straight legs' closure).
+            let warm = Settings {
+                warm_start: Some(warm),
+                warm_divergence: Some(WARM_DIVERGENCE),
+                max_iterations: cap,
+                ..settings.clone()
+            };
             let mut next = run_start(&spec, solver, &warm, deadline, &run.outcome.x, observer)?;
             let rest = left.saturating_sub(next.outcome.iterations);
             if !next.outcome.converged && rest > 0 && remaining(deadline).is_none_or(|t| t > 0.0) {

@@ -64,11 +64,19 @@ pub struct Settings {
     pub time_limit: Option<f64>,
     /// Multipliers to start from (e.g. from a previous solve of a similar problem); zero if `None`.
     pub warm_start: Option<Multipliers>,
+    /// With a warm start: give up ([`StopReason::WarmStartDiverged`]) once a multiplier update leaves the
+    /// scaled violation above this multiple of the warm start's, and above [`DIVERGED_VIOLATION`]. For a
+    /// caller with a cold start to fall back on (the planner's re-solves between the nodes); `None`: never.
+    #[serde(skip)]
+    pub warm_divergence: Option<f64>,
     /// Set from another thread to stop the solve at its next iteration ([`StopReason::Interrupted`]): Ctrl-C
     /// in the Python binding. Not part of a task file.
     #[serde(skip)]
     pub cancel: Cancel,
 }
+
+/// The scaled violation below which a warm start is never said to have diverged, however it grew.
+pub const DIVERGED_VIOLATION: f64 = 1e-2;
 
 /// A flag another thread raises to stop a solve; clones share it.
 #[derive(Clone, Debug, Default)]
@@ -107,6 +115,7 @@ impl Default for Settings {
             max_penalty: 1e12,
             time_limit: Some(60.0),
             warm_start: None,
+            warm_divergence: None,
             cancel: Cancel::default(),
         }
     }
@@ -182,6 +191,14 @@ pub enum StopReason {
         /// Its scaled violation.
         violation: f64,
     },
+    /// A warm start went astray: a multiplier update left the scaled violation at `violation`, more than
+    /// [`Settings::warm_divergence`] times the `start`'s.
+    WarmStartDiverged {
+        /// Scaled violation at the warm start.
+        start: f64,
+        /// Scaled violation when the solve gave up.
+        violation: f64,
+    },
     /// The wall-clock budget (`Settings::time_limit`) ran out.
     TimeLimit,
     /// Stopped from another thread ([`Settings::cancel`]).
@@ -209,6 +226,9 @@ impl fmt::Display for StopReason {
             ),
             StopReason::Infeasible { worst, violation } => {
                 write!(f, "infeasible: {worst} still violated by {violation:.3e} (scaled) at the largest penalty")
+            }
+            StopReason::WarmStartDiverged { start, violation } => {
+                write!(f, "the warm start diverged: the scaled violation grew from {start:.2e} to {violation:.2e}")
             }
             StopReason::TimeLimit => f.write_str("time limit reached"),
             StopReason::Interrupted => f.write_str("interrupted"),

@@ -21,7 +21,7 @@ use std::time::{Duration, Instant};
 
 use super::{Assessment, AugmentedLagrangian, Evaluated, InnerSolver, InnerStatus, Limit, StallWatch};
 use crate::solve::problem::{checked_scales, ConstraintKind, Dims, Evaluation, Problem, Scales};
-use crate::solve::solver::{ConstraintRef, Multipliers, Outcome, Progress, Settings, StopReason};
+use crate::solve::solver::{ConstraintRef, Multipliers, Outcome, Progress, Settings, StopReason, DIVERGED_VIOLATION};
 
 /// The inner tolerance of the first outer iteration (relative, like `tol_stationarity`).
 const FIRST_INNER_TOLERANCE: f64 = 1e-2;
@@ -205,18 +205,28 @@ pub(crate) fn solve_with<I: InnerSolver>(
     if settings.initial_penalty.is_none() {
         al.penalty = automatic_penalty(&al.eval, &al.scales);
     }
+    let mut warm_violation = None;
     if settings.warm_start.is_some() {
         // Resuming from a solution: nothing to do if the test already holds with the given multipliers.
         let assessment = al.assess(false, settings);
         if assessment.converged {
             return al.finish(x, StopReason::Converged, Some(assessment), settings);
         }
+        warm_violation = Some(assessment.violation);
     }
-    al.outer_loop(&mut inner, x, settings)
+    al.outer_loop(&mut inner, x, settings, warm_violation)
 }
 
 impl AugmentedLagrangian<'_> {
-    fn outer_loop(&mut self, inner: &mut dyn InnerSolver, mut x: Vec<f64>, settings: &Settings) -> Outcome {
+    /// The outer iterations from `x`; `warm_violation`: the scaled violation at a warm start, for
+    /// [`Settings::warm_divergence`].
+    fn outer_loop(
+        &mut self,
+        inner: &mut dyn InnerSolver,
+        mut x: Vec<f64>,
+        settings: &Settings,
+        warm_violation: Option<f64>,
+    ) -> Outcome {
         let mut omega = FIRST_INNER_TOLERANCE.max(settings.tol_stationarity);
         let mut previous_progress = f64::INFINITY;
         let mut stuck = 0;
@@ -257,6 +267,12 @@ impl AugmentedLagrangian<'_> {
             }
             if let Some(reason) = slow.after(&status, &assessment, settings) {
                 return self.finish(x, reason, last, settings);
+            }
+            if let (Some(start), Some(factor)) = (warm_violation, settings.warm_divergence) {
+                if assessment.violation > (factor * start).max(DIVERGED_VIOLATION) {
+                    let reason = StopReason::WarmStartDiverged { start, violation: assessment.violation };
+                    return self.finish(x, reason, last, settings);
+                }
             }
             match status {
                 InnerStatus::Stopped => {
