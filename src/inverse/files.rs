@@ -5,6 +5,7 @@
 //! (the settings and the ergonomic report) and, unless left out, the plots of a plan.
 
 use super::driver::{Inverse, Spline};
+use super::lift;
 use super::loads::Loads;
 use crate::model::Model;
 use crate::report::ergonomics::{self, loads::LoadSeries, Ergonomics};
@@ -59,13 +60,14 @@ pub struct FilterSummary {
 }
 
 /// The summary of `inverse` of `motion` on `model` (the coordinates' table of a coupled model, whose
-/// chain is `chain`), under the external `loads`, whose joint loads are `series` ([`joint_loads`]).
+/// chain is `chain`), under the external `loads`, whose joint loads are `series` ([`joint_loads`]); with
+/// the lifting equation of the `lift` file when given.
 pub fn summary(
     model: &Model,
     chain: Option<&Model>,
     inverse: &Inverse,
     motion: &str,
-    (loads, series): (Option<&Loads>, &LoadSeries),
+    (loads, series, lift): (Option<&Loads>, &LoadSeries, Option<&lift::Request>),
 ) -> crate::Result<InverseSummary> {
     let r = &inverse.record;
     let span = [r.samples.first().map_or(0.0, |s| s.t), r.samples.last().map_or(0.0, |s| s.t)];
@@ -88,7 +90,7 @@ pub fn summary(
         },
         forces_of: if inverse.chain.is_some() { "coordinates (coupled model: Gᵀ τ_chain)" } else { "joints" },
         gravity: r.gravity,
-        ergonomics: report(model, r, chained(model, chain, inverse), series)?,
+        ergonomics: report(model, r, chained(model, chain, inverse), series, lift)?,
     })
 }
 
@@ -119,17 +121,20 @@ pub fn joint_loads(model: &Model, chain: Option<&Model>, inverse: &Inverse, load
 
 /// The ergonomic report of the processed motion (per joint or coordinate of `model`), with the L5/S1
 /// load of the joint named `lumbar` when the chain has one (as the planner's default), from the chain's
-/// joint loads `series` (the external loads included).
+/// joint loads `series` (the external loads included), and the lifting equation of `lift` on the chain's
+/// hand path.
 fn report(
     model: &Model,
     record: &PlanRecord,
     (chain, chain_record): (&Model, &PlanRecord),
     series: &LoadSeries,
+    lift: Option<&lift::Request>,
 ) -> crate::Result<Ergonomics> {
     let mut report = ergonomics::ergonomics(model, record, &BTreeMap::new())?;
     if let Some(lumbar) = chain.dof_index("lumbar") {
         report.low_back = Some(ergonomics::lumbar::low_back(chain, chain_record, series, lumbar));
     }
+    report.lifting_equation = lift.map(|l| lift::assess(l, chain, chain_record)).transpose()?;
     Ok(report)
 }
 

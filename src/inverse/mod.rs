@@ -15,6 +15,7 @@ pub mod coupled;
 pub mod driver;
 pub mod external_loads;
 pub mod files;
+pub mod lift;
 pub mod loads;
 pub mod motion;
 pub mod smoothing;

@@ -160,6 +160,11 @@ pub(crate) enum Command {
         /// OpenSim's ExternalLoads .xml with its datafile.
         #[arg(long)]
         loads: Option<PathBuf>,
+        /// The revised NIOSH lifting equation of the recorded hand path: a TOML file with `[lift]` (the
+        /// fields of a task's `[ergonomics.lift]`, `load_kg` required) and optional `origin_s`,
+        /// `destination_s` (docs/ergonomics.md).
+        #[arg(long)]
+        lift: Option<PathBuf>,
         /// A BVH motion's length unit: cm (the default, as BVH is usually written) or m.
         #[arg(long)]
         units: Option<String>,
