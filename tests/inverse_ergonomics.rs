@@ -27,7 +27,8 @@ fn planned() -> &'static (PathBuf, PathBuf) {
         let (plan, mot) = (dir.join("plan"), dir.join("lift.mot"));
         let args = ["plan", "examples/lift_stoop.toml", "-q", "--no-plots", "--out"];
         cli::ok(&args.iter().map(|s| s.as_ref()).chain([plan.as_os_str()]).collect::<Vec<_>>());
-        let export = ["export".as_ref(), plan.as_os_str(), "--format".as_ref(), "mot".as_ref(), "--out".as_ref(), mot.as_os_str()];
+        let export =
+            ["export".as_ref(), plan.as_os_str(), "--format".as_ref(), "mot".as_ref(), "--out".as_ref(), mot.as_os_str()];
         cli::ok(&export);
         (plan, mot)
     })
@@ -109,9 +110,21 @@ fn a_lift_file_the_equation_or_the_model_cannot_take_is_refused() {
     let (plan, mot) = planned();
     let lift = "duration = \"short\"\ncoupling = \"good\"\n";
     let cases: [(&str, String, &[&str]); 5] = [
-        ("frequent.toml", format!("[lift]\nfrequency_per_min = 16.0\n{lift}load_kg = 15.0\n"), &["lift", "16 lifts/min is beyond the frequency table", "does not cover this lift"]),
-        ("hands.toml", format!("[lift]\nfrequency_per_min = 1.0\n{lift}load_kg = 15.0\nhands = [\"grip\"]\n"), &["lift.hands", "no frame \"grip\""]),
-        ("late.toml", format!("destination_s = 9.0\n[lift]\nfrequency_per_min = 1.0\n{lift}load_kg = 15.0\n"), &["destination_s", "outside the motion"]),
+        (
+            "frequent.toml",
+            format!("[lift]\nfrequency_per_min = 16.0\n{lift}load_kg = 15.0\n"),
+            &["lift", "16 lifts/min is beyond the frequency table", "does not cover this lift"],
+        ),
+        (
+            "hands.toml",
+            format!("[lift]\nfrequency_per_min = 1.0\n{lift}load_kg = 15.0\nhands = [\"grip\"]\n"),
+            &["lift.hands", "no frame \"grip\""],
+        ),
+        (
+            "late.toml",
+            format!("destination_s = 9.0\n[lift]\nfrequency_per_min = 1.0\n{lift}load_kg = 15.0\n"),
+            &["destination_s", "outside the motion"],
+        ),
         ("nofreq.toml", format!("[lift]\n{lift}load_kg = 15.0\n"), &["frequency_per_min"]),
         ("noload.toml", format!("[lift]\nfrequency_per_min = 1.0\n{lift}"), &["lift.load_kg", "no load"]),
     ];

@@ -4,7 +4,7 @@
 //! `trajectory.csv`), `q_filtered.mot` (the processed motion, degrees), `joint_loads.csv`, `summary.json`
 //! (the settings and the ergonomic report) and, unless left out, the plots of a plan.
 
-use super::driver::{Inverse, Spline};
+use super::driver::{Forces, Inverse, Spline};
 use super::lift;
 use super::loads::Loads;
 use crate::model::Model;
@@ -44,6 +44,8 @@ pub struct InverseSummary {
     /// Whose generalized forces the `.sto` holds: the model's joints, or a coupled OpenSim model's
     /// coordinates (`τ = Gᵀ τ_chain`; `joint_loads.csv` is then of the chain's joints).
     pub forces_of: &'static str,
+    /// `net` (passive springs and dampers included) or `actuator` (less them, OpenSim's convention).
+    pub forces: &'static str,
     /// Gravity (m/s², world axes).
     pub gravity: [f64; 3],
     /// Per joint: peak |τ|, when, work and power; the strength shares where the model has limits.
@@ -87,6 +89,12 @@ pub fn summary(
         derivatives: match inverse.settings.spline {
             Spline::Interpolating => "not-a-knot cubic interpolating spline through the (filtered) samples",
             Spline::Smoothing => "quintic smoothing spline, smoothing parameter of the cutoff (the Nyquist frequency unfiltered)",
+        },
+        forces: match inverse.settings.forces {
+            Forces::Net => "net: passive springs and dampers included",
+            Forces::Actuator => {
+                "actuator: the net forces less the model's passive springs and dampers (OpenSim's InverseDynamicsTool)"
+            }
         },
         forces_of: if inverse.chain.is_some() { "coordinates (coupled model: Gᵀ τ_chain)" } else { "joints" },
         gravity: r.gravity,

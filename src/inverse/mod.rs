@@ -22,5 +22,5 @@ pub mod smoothing;
 pub mod spline;
 pub mod table;
 
-pub use driver::{inverse_dynamics, Inverse, Settings, Spline, DEFAULT_FILTER_HZ};
+pub use driver::{inverse_dynamics, Forces, Inverse, Settings, Spline, DEFAULT_FILTER_HZ};
 pub use motion::Motion;

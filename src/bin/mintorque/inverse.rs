@@ -22,6 +22,22 @@ pub enum SplineArg {
     Smoothing,
 }
 
+/// `--forces`.
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum ForcesArg {
+    Net,
+    Actuator,
+}
+
+impl From<ForcesArg> for inverse::Forces {
+    fn from(f: ForcesArg) -> inverse::Forces {
+        match f {
+            ForcesArg::Net => inverse::Forces::Net,
+            ForcesArg::Actuator => inverse::Forces::Actuator,
+        }
+    }
+}
+
 impl From<SplineArg> for inverse::Spline {
     fn from(s: SplineArg) -> inverse::Spline {
         match s {
@@ -80,7 +96,8 @@ pub fn run(subject: &Subject, a: &Args) -> Result<()> {
         Subject::Coupled(osim) => coupled::inverse_dynamics(osim, &motion, &a.settings, loads.as_ref())?,
     };
     let series = files::joint_loads(&names, chain, &result, loads.as_ref())?;
-    let summary = files::summary(&names, chain, &result, &a.motion.display().to_string(), (loads.as_ref(), &series, lift.as_ref()))?;
+    let summary =
+        files::summary(&names, chain, &result, &a.motion.display().to_string(), (loads.as_ref(), &series, lift.as_ref()))?;
     let rendered = files::render(&names, chain, &result, &series, &summary, a.no_plots)?;
     plan_dir::write_files(a.out, &rendered, &WriteOptions::default())?;
     if !a.quiet {
@@ -95,6 +112,7 @@ pub fn run(subject: &Subject, a: &Args) -> Result<()> {
             println!("coupled model: forces of its {} coordinates from its {}-DOF chain (τ = Gᵀ τ_chain); joint_loads.csv is of the chain's joints", names.nv(), chain.nv());
         }
         println!("{} samples at {:.3} Hz ({} in the file), {filter}", summary.samples, summary.rate_hz, summary.input_samples);
+        println!("forces: {}", summary.forces);
         print!("{}", mintorque::report::ergonomics::text_table(&summary.ergonomics));
         println!("results in {}", a.out.display());
     }

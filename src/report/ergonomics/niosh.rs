@@ -200,7 +200,12 @@ pub struct Written<'a> {
 /// `[ergonomics.lift]` of `file` against `model` and `gravity`.
 pub fn resolve(spec: &LiftSpec, file: &TaskFile, model: &Model, gravity: &Vec3, origin: &str) -> Result<Lift> {
     let payload_kg = Some(file.environment.payload.iter().map(|p| p.mass).sum());
-    resolve_in(spec, model, gravity, &Written { origin, table: "ergonomics.lift", gravity_field: "environment.gravity", payload_kg })
+    resolve_in(
+        spec,
+        model,
+        gravity,
+        &Written { origin, table: "ergonomics.lift", gravity_field: "environment.gravity", payload_kg },
+    )
 }
 
 /// The lift `spec` against `model` and `gravity`; errors name the file and field as `written` says.
@@ -256,10 +261,9 @@ pub fn resolve_in(spec: &LiftSpec, model: &Model, gravity: &Vec3, written: &Writ
 fn hand_frames(spec: &LiftSpec, model: &Model, err: &dyn Fn(&str, String) -> Error) -> Result<Vec<usize>> {
     let frame = |name: &str| model.frames.iter().position(|f| f.name == name);
     match &spec.hands {
-        Some(names) if !names.is_empty() => names
-            .iter()
-            .map(|n| frame(n).ok_or_else(|| err("hands", format!("the model has no frame \"{n}\""))))
-            .collect(),
+        Some(names) if !names.is_empty() => {
+            names.iter().map(|n| frame(n).ok_or_else(|| err("hands", format!("the model has no frame \"{n}\"")))).collect()
+        }
         Some(_) => Err(err("hands", "name at least one frame".into())),
         None => match (frame("hands"), frame("left_hand"), frame("right_hand")) {
             (Some(h), _, _) => Ok(vec![h]),
