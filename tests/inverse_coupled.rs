@@ -246,8 +246,8 @@ fn actuator_forces_of_a_coupled_model_subtract_its_coordinate_springs() {
     let actuator = coupled::inverse_dynamics(&osim, &m, &settings, None).expect("actuator");
     let mut worst = 0.0f64;
     for (a, n) in actuator.record.samples.iter().zip(&net.record.samples) {
-        for k in 0..a.tau.len() {
-            let spring = if k == knee || k == back { c[k].passive.torque(n.q[k], n.qd[k]) } else { 0.0 };
+        for (k, coordinate) in c.iter().enumerate() {
+            let spring = if k == knee || k == back { coordinate.passive.torque(n.q[k], n.qd[k]) } else { 0.0 };
             worst = worst.max((a.tau[k] - (n.tau[k] - spring)).abs());
         }
     }
