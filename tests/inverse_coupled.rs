@@ -214,3 +214,45 @@ fn write_knee_in_degrees(text: &str, osim: &Osim) -> String {
     }
     out.join("\n") + "\n"
 }
+
+/// `--forces actuator` on a coupled model: a SpringGeneralizedForce on the coupled knee coordinate (no
+/// single chain joint's spring: kept on the coordinate) and one on the back (a chain joint's own spring)
+/// are subtracted from their coordinates' forces, `τ_actuator = τ_net − (−k(q − rest) − d·q̇)`, and from no
+/// other.
+#[test]
+fn actuator_forces_of_a_coupled_model_subtract_its_coordinate_springs() {
+    let spring = |name: &str, coordinate: &str, k: f64, rest: f64, d: f64| {
+        format!(
+            "<SpringGeneralizedForce name=\"{name}\"><coordinate>{coordinate}</coordinate><stiffness>{k}</stiffness>\
+             <rest_length>{rest}</rest_length><viscosity>{d}</viscosity></SpringGeneralizedForce>"
+        )
+    };
+    let springs = spring("knee_spring", "knee_angle_r", 60.0, -0.5, 4.0) + &spring("back_spring", "back_coord_0", 25.0, 0.1, 1.5);
+    let text = std::fs::read_to_string(model_path()).unwrap().replace(
+        "<ForceSet name=\"forceset\">\n\t\t\t<objects>",
+        &format!("<ForceSet name=\"forceset\">\n\t\t\t<objects>{springs}"),
+    );
+    let osim = osim::parse(&text, "coupled_legs+springs.osim").expect("coupled legs with springs");
+    let c = &osim.coordinates.coordinates;
+    let (knee, back) = ["knee_angle_r", "back_coord_0"].map(|n| c.iter().position(|k| k.name == n).unwrap()).into();
+    assert!(osim.ignored.iter().any(|l| l.contains("knee_spring") && l.contains("--forces actuator")), "{:?}", osim.ignored);
+    let back_joint = osim.model.dof_index("back_coord_0").expect("the back is a chain joint");
+    assert_eq!(osim.model.joints[back_joint + 1].passive, c[back].passive, "the back's spring is its joint's");
+    let dir = scratch("springs");
+    write_motion(&osim, &dir.join("m.mot"), true, &[]);
+    let m = motion::read(&dir.join("m.mot"), &coupled::coordinate_joints(&osim)).expect("motion");
+    let net = coupled::inverse_dynamics(&osim, &m, &Settings::default(), None).expect("net");
+    let settings = Settings { forces: mintorque::inverse::Forces::Actuator, ..Settings::default() };
+    let actuator = coupled::inverse_dynamics(&osim, &m, &settings, None).expect("actuator");
+    let mut worst = 0.0f64;
+    for (a, n) in actuator.record.samples.iter().zip(&net.record.samples) {
+        for (k, coordinate) in c.iter().enumerate() {
+            let spring = if k == knee || k == back { coordinate.passive.torque(n.q[k], n.qd[k]) } else { 0.0 };
+            worst = worst.max((a.tau[k] - (n.tau[k] - spring)).abs());
+        }
+    }
+    let knee_spring = net.record.samples.iter().map(|s| c[knee].passive.torque(s.q[knee], s.qd[knee]).abs()).fold(0.0, f64::max);
+    eprintln!("coupled springs: actuator = net − spring to {worst:.1e} N·m; the knee's spring up to {knee_spring:.1} N·m");
+    assert!(knee_spring > 10.0 && worst < 1e-9, "{worst} {knee_spring}");
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -36,9 +36,15 @@ struct Fixture {
 }
 
 fn fixture(tag: &str) -> Fixture {
+    fixture_with(tag, |_| ())
+}
+
+/// [`fixture`] with the human changed by `edit` before it is written.
+fn fixture_with(tag: &str, edit: impl FnOnce(&mut Model)) -> Fixture {
     let dir = std::env::temp_dir().join(format!("{tag}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp dir");
-    let human = model::load_any(&Path::new(env!("CARGO_MANIFEST_DIR")).join("models/human36.urdf")).expect("human36");
+    let mut human = model::load_any(&Path::new(env!("CARGO_MANIFEST_DIR")).join("models/human36.urdf")).expect("human36");
+    edit(&mut human);
     let (model_path, motion_path) = (dir.join("human36.osim"), dir.join("smooth.mot"));
     std::fs::write(&model_path, osim::to_osim(&human)).expect("write .osim");
     let model = osim::load_model(&model_path).expect("read back");
@@ -191,5 +197,44 @@ fn external_loads_xml_change_the_forces_as_in_opensims_tool() {
         "external loads: the change they make, ours vs OpenSim {e_change:.2e} of its peak (all samples); the loaded forces {e_loaded:.2e} (inner samples); the change's peak {scale:.1} N·m"
     );
     assert!(scale > 0.0 && e_change < 1e-4 && e_loaded < 1e-3, "{e_change:e} {e_loaded:e}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The same model with a spring and damper on every joint (SpringGeneralizedForces in the `.osim`):
+/// OpenSim's tool, with the model's forces acting, reports the net forces less the springs';
+/// `--forces actuator` reports the same. Unfiltered, the default smoothing spline, inner samples: the
+/// change the springs make agrees to 1e-6 of its peak (both tools take the springs at the motion's q and
+/// their splines' q̇), the actuator forces as closely as the net ones do without springs (the splines'
+/// derivatives), and the default net forces differ from OpenSim's by the springs.
+#[test]
+fn actuator_forces_are_opensims_tool_with_the_models_springs() {
+    let springs = |m: &mut Model| {
+        for (k, j) in m.joints.iter_mut().skip(1).enumerate() {
+            let k = k as f64;
+            j.passive = model::Passive { stiffness: 30.0 + 5.0 * k, rest: 0.1 * (k % 5.0) - 0.2, damping: 1.0 + 0.3 * k };
+        }
+    };
+    let Fixture { dir, model_path, motion_path, model, labels } = fixture_with("mintorque-inverse-opensim-springs", springs);
+    assert!(model.joints[1..].iter().all(|j| j.passive.stiffness > 0.0), "the springs read back");
+    let theirs_net = forces(&run_opensim(&model_path, &motion_path, &dir.join("o0"), -1.0), &labels);
+    let theirs = forces(&run_opensim_keeping_forces(&model_path, &motion_path, &dir.join("o1"), -1.0), &labels);
+    let net = forces(&run_ours(&model_path, &motion_path, &dir.join("m0"), &["--no-filter"]), &labels);
+    let actuator =
+        forces(&run_ours(&model_path, &motion_path, &dir.join("m1"), &["--no-filter", "--forces", "actuator"]), &labels);
+    let change = |a: &[Vec<f64>], b: &[Vec<f64>]| -> Vec<Vec<f64>> {
+        a.iter().zip(b).map(|(x, y)| x.iter().zip(y).map(|(p, q)| p - q).collect()).collect()
+    };
+    let (ours_change, theirs_change) = (change(&actuator, &net), change(&theirs, &theirs_net));
+    let skip = 10; // 50 ms at each end, where the splines' end conditions act (on q̇ too)
+    let (e_change, e_change_all) =
+        (relative_error(&ours_change, &theirs_change, skip), relative_error(&ours_change, &theirs_change, 0));
+    let (e_actuator, e_net) = (relative_error(&actuator, &theirs, skip), relative_error(&net, &theirs, skip));
+    let peak = theirs_change.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
+    eprintln!(
+        "springs: the change they make, ours (--forces actuator − net) vs OpenSim's {e_change:.2e} of its peak {peak:.1} N·m \
+         (inner samples; {e_change_all:.2e} all); actuator forces vs OpenSim's tool {e_actuator:.2e}, net forces vs it {e_net:.2e} (inner)"
+    );
+    assert!(peak > 10.0 && e_change < 1e-6, "{e_change:e}, peak {peak}");
+    assert!(e_actuator < 1e-5 && e_net > 1e-2, "{e_actuator:e} {e_net:e}");
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -255,15 +255,31 @@ fn run(cli: Cli) -> Result<ExitCode> {
             Ok(ExitCode::SUCCESS)
         }
         Command::Simulate { plan: path, steps } => Ok(exit(run_simulate(&path, steps)?)),
-        Command::Inverse { model, motion, out, filter_hz, no_filter, rate, spline, loads, units, quiet, no_plots, read } => {
+        Command::Inverse {
+            model,
+            motion,
+            out,
+            filter_hz,
+            no_filter,
+            rate,
+            spline,
+            forces,
+            loads,
+            lift,
+            units,
+            quiet,
+            no_plots,
+            read,
+        } => {
             let subject = inverse::subject(&model, |path| load_model(path, read))?;
-            let (loads, units) = (loads.as_deref(), units.as_deref());
+            let (loads, lift, units) = (loads.as_deref(), lift.as_deref(), units.as_deref());
             let settings = mintorque::inverse::Settings {
                 filter_hz: (!no_filter).then_some(filter_hz),
                 rate_hz: rate,
                 spline: spline.into(),
+                forces: forces.into(),
             };
-            let args = inverse::Args { motion: &motion, out: &out, settings, loads, units, quiet, no_plots };
+            let args = inverse::Args { motion: &motion, out: &out, settings, loads, lift, units, quiet, no_plots };
             inverse::run(&subject, &args).map(|()| ExitCode::SUCCESS)
         }
         Command::Dynamics { model, states, gravity, bench, read } => {

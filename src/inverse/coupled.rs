@@ -8,7 +8,7 @@
 //! of joints (names, rotational or translational, clamped ranges) that carries no mass and is never given
 //! to the dynamics.
 
-use super::driver::{process, record_of, Inverse, Settings};
+use super::driver::{process, record_of, subtract_passive, Inverse, Settings};
 use super::loads::Loads;
 use super::motion::Motion;
 use crate::dynamics::{rnea::rnea, Data};
@@ -49,8 +49,9 @@ pub fn coordinate_joints(osim: &Osim) -> Model {
 
 /// Inverse dynamics of `motion` (of the coordinates, in their order: read it with
 /// [`coordinate_joints`]) on the coupled `osim`, under the external `loads` (on the chain's frames):
-/// `τ = Gᵀ (RNEA(φ(q), G q̇, G q̈ + φ″ q̇²) − Σ Jᵀ F_ext)` at every sample; the record holds the
-/// coordinates, [`Inverse::chain`] the chain's state and forces.
+/// `τ = Gᵀ (RNEA(φ(q), G q̇, G q̈ + φ″ q̇²) − Σ Jᵀ F_ext)` at every sample (less the coordinates'
+/// springs with [`super::driver::Forces::Actuator`]); the record holds the coordinates,
+/// [`Inverse::chain`] the chain's state and net forces.
 pub fn inverse_dynamics(osim: &Osim, motion: &Motion, settings: &Settings, loads: Option<&Loads>) -> Result<Inverse> {
     check_coupled_ranges(motion, osim)?;
     let (chain, c) = (&osim.model, &osim.coordinates);
@@ -63,7 +64,8 @@ pub fn inverse_dynamics(osim: &Osim, motion: &Motion, settings: &Settings, loads
         if let Some(l) = loads {
             l.subtract(chain, &data, t, &mut tau_chain);
         }
-        let tau = c.generalized_forces(q, &tau_chain)?;
+        let mut tau = c.generalized_forces(q, &tau_chain)?;
+        subtract_passive(settings.forces, q, qd, &mut tau, |k| c.coordinates[k].passive);
         chain_samples.push(SampleRecord { t, q: qc, qd: vc, qdd: ac, tau: tau_chain, contact_forces: Vec::new() });
         Ok(tau)
     };

@@ -3,8 +3,9 @@
 //! differentiate it — one quintic smoothing spline whose smoothing is the cutoff's ([`Spline::Smoothing`],
 //! the default), or a zero-lag Butterworth (default 6 Hz) and a not-a-knot cubic through the filtered
 //! samples ([`Spline::Interpolating`]) — then `τ = RNEA(q, q̇, q̈) − Σ Jᵀ F_ext` at every sample under the
-//! model's gravity and the external loads of a file ([`super::loads`]), if any ([`super::coupled`] maps
-//! a coupled OpenSim model's coordinates to its chain and back).
+//! model's gravity and the external loads of a file ([`super::loads`]), if any, less the passive springs
+//! and dampers when the actuators' forces are asked for ([`Forces`]; [`super::coupled`] maps a coupled
+//! OpenSim model's coordinates to its chain and back).
 
 use super::butterworth::{self, filtfilt};
 use super::loads::Loads;
@@ -13,7 +14,7 @@ use super::smoothing::Smoother;
 use super::spline::CubicSpline;
 use crate::dynamics::{rnea::rnea, Data};
 use crate::error::{Error, Result};
-use crate::model::Model;
+use crate::model::{Model, Passive};
 use crate::report::record::{PlanRecord, SampleRecord, FORMAT};
 
 /// The default low-pass cutoff (Hz): 6 Hz, the usual choice for gait and lifting kinematics.
@@ -31,6 +32,30 @@ pub struct Settings {
     pub rate_hz: Option<f64>,
     /// How the motion is differentiated (and, when smoothing, filtered).
     pub spline: Spline,
+    /// Which generalized forces are reported (`--forces`).
+    pub forces: Forces,
+}
+
+/// Which generalized forces `inverse` reports (`--forces`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Forces {
+    /// The net forces `RNEA − Σ Jᵀ F_ext`, the model's passive springs and dampers included (the default).
+    #[default]
+    Net,
+    /// What the actuators (muscles) add to the passive springs and dampers: the net forces less
+    /// `−k(q − rest) − d·q̇` of every joint (of a coupled model's coordinates: their
+    /// SpringGeneralizedForces) — OpenSim's InverseDynamicsTool, which subtracts the model's forces.
+    Actuator,
+}
+
+/// Subtracts from `tau` the passive force `passive(i)` gives each DOF `i` at `(q, q̇)` when `forces` asks
+/// for the actuators' share.
+pub(super) fn subtract_passive(forces: Forces, q: &[f64], qd: &[f64], tau: &mut [f64], passive: impl Fn(usize) -> Passive) {
+    if forces == Forces::Actuator {
+        for (i, t) in tau.iter_mut().enumerate() {
+            *t -= passive(i).torque(q[i], qd[i]);
+        }
+    }
 }
 
 /// How `q̇` and `q̈` are obtained (`--spline`).
@@ -48,7 +73,7 @@ pub enum Spline {
 
 impl Default for Settings {
     fn default() -> Settings {
-        Settings { filter_hz: Some(DEFAULT_FILTER_HZ), rate_hz: None, spline: Spline::default() }
+        Settings { filter_hz: Some(DEFAULT_FILTER_HZ), rate_hz: None, spline: Spline::default(), forces: Forces::default() }
     }
 }
 
@@ -70,7 +95,8 @@ pub struct Inverse {
 }
 
 /// Inverse dynamics of `motion` on `model` as `settings` say, under the external `loads` if given:
-/// `τ = RNEA(q, q̇, q̈) − Σ Jᵀ F_ext` at every sample.
+/// `τ = RNEA(q, q̇, q̈) − Σ Jᵀ F_ext` at every sample, less the joints' passive forces with
+/// [`Forces::Actuator`].
 pub fn inverse_dynamics(model: &Model, motion: &Motion, settings: &Settings, loads: Option<&Loads>) -> Result<Inverse> {
     let mut data = Data::new(model);
     let forces = |t: f64, q: &[f64], qd: &[f64], qdd: &[f64]| {
@@ -78,6 +104,7 @@ pub fn inverse_dynamics(model: &Model, motion: &Motion, settings: &Settings, loa
         if let Some(l) = loads {
             l.subtract(model, &data, t, &mut tau);
         }
+        subtract_passive(settings.forces, q, qd, &mut tau, |i| model.joints[i + 1].passive);
         Ok(tau)
     };
     process(model, motion, settings, loads, forces)

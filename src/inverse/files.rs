@@ -4,7 +4,8 @@
 //! `trajectory.csv`), `q_filtered.mot` (the processed motion, degrees), `joint_loads.csv`, `summary.json`
 //! (the settings and the ergonomic report) and, unless left out, the plots of a plan.
 
-use super::driver::{Inverse, Spline};
+use super::driver::{Forces, Inverse, Spline};
+use super::lift;
 use super::loads::Loads;
 use crate::model::Model;
 use crate::report::ergonomics::{self, loads::LoadSeries, Ergonomics};
@@ -43,6 +44,8 @@ pub struct InverseSummary {
     /// Whose generalized forces the `.sto` holds: the model's joints, or a coupled OpenSim model's
     /// coordinates (`τ = Gᵀ τ_chain`; `joint_loads.csv` is then of the chain's joints).
     pub forces_of: &'static str,
+    /// `net` (passive springs and dampers included) or `actuator` (less them, OpenSim's convention).
+    pub forces: &'static str,
     /// Gravity (m/s², world axes).
     pub gravity: [f64; 3],
     /// Per joint: peak |τ|, when, work and power; the strength shares where the model has limits.
@@ -59,13 +62,14 @@ pub struct FilterSummary {
 }
 
 /// The summary of `inverse` of `motion` on `model` (the coordinates' table of a coupled model, whose
-/// chain is `chain`), under the external `loads`, whose joint loads are `series` ([`joint_loads`]).
+/// chain is `chain`), under the external `loads`, whose joint loads are `series` ([`joint_loads`]); with
+/// the lifting equation of the `lift` file when given.
 pub fn summary(
     model: &Model,
     chain: Option<&Model>,
     inverse: &Inverse,
     motion: &str,
-    (loads, series): (Option<&Loads>, &LoadSeries),
+    (loads, series, lift): (Option<&Loads>, &LoadSeries, Option<&lift::Request>),
 ) -> crate::Result<InverseSummary> {
     let r = &inverse.record;
     let span = [r.samples.first().map_or(0.0, |s| s.t), r.samples.last().map_or(0.0, |s| s.t)];
@@ -86,9 +90,15 @@ pub fn summary(
             Spline::Interpolating => "not-a-knot cubic interpolating spline through the (filtered) samples",
             Spline::Smoothing => "quintic smoothing spline, smoothing parameter of the cutoff (the Nyquist frequency unfiltered)",
         },
+        forces: match inverse.settings.forces {
+            Forces::Net => "net: passive springs and dampers included",
+            Forces::Actuator => {
+                "actuator: the net forces less the model's passive springs and dampers (OpenSim's InverseDynamicsTool)"
+            }
+        },
         forces_of: if inverse.chain.is_some() { "coordinates (coupled model: Gᵀ τ_chain)" } else { "joints" },
         gravity: r.gravity,
-        ergonomics: report(model, r, chained(model, chain, inverse), series)?,
+        ergonomics: report(model, r, chained(model, chain, inverse), series, lift)?,
     })
 }
 
@@ -119,17 +129,20 @@ pub fn joint_loads(model: &Model, chain: Option<&Model>, inverse: &Inverse, load
 
 /// The ergonomic report of the processed motion (per joint or coordinate of `model`), with the L5/S1
 /// load of the joint named `lumbar` when the chain has one (as the planner's default), from the chain's
-/// joint loads `series` (the external loads included).
+/// joint loads `series` (the external loads included), and the lifting equation of `lift` on the chain's
+/// hand path.
 fn report(
     model: &Model,
     record: &PlanRecord,
     (chain, chain_record): (&Model, &PlanRecord),
     series: &LoadSeries,
+    lift: Option<&lift::Request>,
 ) -> crate::Result<Ergonomics> {
     let mut report = ergonomics::ergonomics(model, record, &BTreeMap::new())?;
     if let Some(lumbar) = chain.dof_index("lumbar") {
         report.low_back = Some(ergonomics::lumbar::low_back(chain, chain_record, series, lumbar));
     }
+    report.lifting_equation = lift.map(|l| lift::assess(l, chain, chain_record)).transpose()?;
     Ok(report)
 }
 

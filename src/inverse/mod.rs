@@ -15,11 +15,12 @@ pub mod coupled;
 pub mod driver;
 pub mod external_loads;
 pub mod files;
+pub mod lift;
 pub mod loads;
 pub mod motion;
 pub mod smoothing;
 pub mod spline;
 pub mod table;
 
-pub use driver::{inverse_dynamics, Inverse, Settings, Spline, DEFAULT_FILTER_HZ};
+pub use driver::{inverse_dynamics, Forces, Inverse, Settings, Spline, DEFAULT_FILTER_HZ};
 pub use motion::Motion;

@@ -58,11 +58,22 @@ pub fn run_opensim(model: &Path, motion: &Path, dir: &Path, cutoff: f64) -> Path
 }
 
 pub fn run_opensim_with(model: &Path, motion: &Path, dir: &Path, cutoff: f64, loads: Option<&Path>) -> PathBuf {
+    run_opensim_args(model, motion, dir, cutoff, loads, &[])
+}
+
+/// OpenSim's tool with the model's own forces acting (its SpringGeneralizedForces: the tool then reports
+/// the net forces less theirs).
+pub fn run_opensim_keeping_forces(model: &Path, motion: &Path, dir: &Path, cutoff: f64) -> PathBuf {
+    run_opensim_args(model, motion, dir, cutoff, None, &["--keep-forces"])
+}
+
+fn run_opensim_args(model: &Path, motion: &Path, dir: &Path, cutoff: f64, loads: Option<&Path>, flags: &[&str]) -> PathBuf {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let python = root.join("target/opensim-venv/bin/python");
     assert!(python.exists(), "{} is missing: run `bash scripts/test-deps.sh` (it makes the OpenSim venv)", python.display());
     let out = std::process::Command::new(python)
         .arg(root.join("tests/inverse/opensim_id.py"))
+        .args(flags)
         .args([model, motion, dir])
         .arg(cutoff.to_string())
         .args(loads)

@@ -160,10 +160,20 @@ pub(crate) enum Command {
         /// the filtered samples).
         #[arg(long, value_enum, default_value_t = crate::inverse::SplineArg::Smoothing)]
         spline: crate::inverse::SplineArg,
+        /// Which generalized forces: `net` (the default: everything the joint carries, passive springs and
+        /// dampers included) or `actuator` (the net forces less the model's springs and dampers, as
+        /// OpenSim's InverseDynamicsTool reports them).
+        #[arg(long, value_enum, default_value_t = crate::inverse::ForcesArg::Net)]
+        forces: crate::inverse::ForcesArg,
         /// External loads on the figure over time: CSV (time_s, FRAME.fx_N … FRAME.mz_Nm; world axes) or
         /// OpenSim's ExternalLoads .xml with its datafile.
         #[arg(long)]
         loads: Option<PathBuf>,
+        /// The revised NIOSH lifting equation of the recorded hand path: a TOML file with `[lift]` (the
+        /// fields of a task's `[ergonomics.lift]`, `load_kg` required) and optional `origin_s`,
+        /// `destination_s` (docs/ergonomics.md).
+        #[arg(long)]
+        lift: Option<PathBuf>,
         /// A BVH motion's length unit: cm (the default, as BVH is usually written) or m.
         #[arg(long)]
         units: Option<String>,

@@ -22,6 +22,22 @@ pub enum SplineArg {
     Smoothing,
 }
 
+/// `--forces`.
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum ForcesArg {
+    Net,
+    Actuator,
+}
+
+impl From<ForcesArg> for inverse::Forces {
+    fn from(f: ForcesArg) -> inverse::Forces {
+        match f {
+            ForcesArg::Net => inverse::Forces::Net,
+            ForcesArg::Actuator => inverse::Forces::Actuator,
+        }
+    }
+}
+
 impl From<SplineArg> for inverse::Spline {
     fn from(s: SplineArg) -> inverse::Spline {
         match s {
@@ -53,6 +69,8 @@ pub struct Args<'a> {
     pub out: &'a Path,
     pub settings: Settings,
     pub loads: Option<&'a Path>,
+    /// `--lift FILE.toml`: the lifting equation of the recorded hand path.
+    pub lift: Option<&'a Path>,
     /// `--units` (BVH only).
     pub units: Option<&'a str>,
     pub quiet: bool,
@@ -72,12 +90,14 @@ pub fn run(subject: &Subject, a: &Args) -> Result<()> {
     }
     let motion = inverse::motion::read_with_units(a.motion, &names, unit.unwrap_or(LengthUnit::Centimetre))?;
     let loads = a.loads.map(|p| inverse::loads::read(p, chain.unwrap_or(&names))).transpose()?;
+    let lift = a.lift.map(inverse::lift::read).transpose()?;
     let result: Inverse = match subject {
         Subject::Joints(model) => inverse::inverse_dynamics(model, &motion, &a.settings, loads.as_ref())?,
         Subject::Coupled(osim) => coupled::inverse_dynamics(osim, &motion, &a.settings, loads.as_ref())?,
     };
     let series = files::joint_loads(&names, chain, &result, loads.as_ref())?;
-    let summary = files::summary(&names, chain, &result, &a.motion.display().to_string(), (loads.as_ref(), &series))?;
+    let summary =
+        files::summary(&names, chain, &result, &a.motion.display().to_string(), (loads.as_ref(), &series, lift.as_ref()))?;
     let rendered = files::render(&names, chain, &result, &series, &summary, a.no_plots)?;
     plan_dir::write_files(a.out, &rendered, &WriteOptions::default())?;
     if !a.quiet {
@@ -92,6 +112,7 @@ pub fn run(subject: &Subject, a: &Args) -> Result<()> {
             println!("coupled model: forces of its {} coordinates from its {}-DOF chain (τ = Gᵀ τ_chain); joint_loads.csv is of the chain's joints", names.nv(), chain.nv());
         }
         println!("{} samples at {:.3} Hz ({} in the file), {filter}", summary.samples, summary.rate_hz, summary.input_samples);
+        println!("forces: {}", summary.forces);
         print!("{}", mintorque::report::ergonomics::text_table(&summary.ergonomics));
         println!("results in {}", a.out.display());
     }

@@ -81,7 +81,7 @@ pub(super) fn build(parsed: Parsed, origin: &str) -> Result<(Model, Coordinates,
         });
     }
     for spring in &springs {
-        add_spring(&mut model, &coordinates, spring, origin, &mut ignored)?;
+        add_spring(&mut model, &mut coordinates, spring, origin, &mut ignored)?;
     }
     for c in coordinates.coordinates.iter().filter(|c| c.locked) {
         ignored.push(format!(
@@ -98,12 +98,14 @@ pub(super) fn build(parsed: Parsed, origin: &str) -> Result<(Model, Coordinates,
     Ok((model, coordinates, ignored))
 }
 
-/// A coordinate spring as the passive spring and damper of the DOF that is the coordinate itself (springs on
-/// one coordinate add: `k = Σkᵢ`, `rest = Σkᵢrᵢ / k`, `d = Σdᵢ`); on a coordinate that drives coupled DOFs
-/// it is listed as ignored (a force on a coordinate is no single joint's torque there).
+/// A coordinate spring added to its coordinate's passive spring and damper (springs on one coordinate
+/// add: `k = Σkᵢ`, `rest = Σkᵢrᵢ / k`, `d = Σdᵢ`), which is also that of the DOF that is the coordinate
+/// itself; on a coordinate that drives coupled DOFs it stays the coordinate's alone (a force on a
+/// coordinate is no single joint's torque there: `mintorque inverse --forces actuator` subtracts it from
+/// the coordinate's force) and is listed as ignored by the chain.
 fn add_spring(
     model: &mut Model,
-    coordinates: &Coordinates,
+    coordinates: &mut Coordinates,
     spring: &Spring,
     origin: &str,
     ignored: &mut Vec<String>,
@@ -114,17 +116,7 @@ fn add_spring(
         let message = crate::error::unknown_name("coordinate", &spring.coordinate, &names, |k| format!("\"{k}\""));
         return Err(Error::model(format!("{origin}:{}", spring.line), what(), message));
     };
-    let dofs: Vec<usize> = (0..coordinates.chain.len()).filter(|&k| coordinates.chain[k].coordinate == c).collect();
-    let [dof] = dofs[..] else {
-        ignored.push(format!(
-            "ForceSet: SpringGeneralizedForce \"{}\" on coordinate \"{}\", which drives {} DOFs (coupled): not modelled",
-            spring.name,
-            spring.coordinate,
-            dofs.len()
-        ));
-        return Ok(());
-    };
-    let p = &mut model.joints[dof + 1].passive;
+    let p = &mut coordinates.coordinates[c].passive;
     let stiffness = p.stiffness + spring.stiffness;
     if p.stiffness == 0.0 {
         p.rest = spring.rest_length;
@@ -132,6 +124,16 @@ fn add_spring(
         p.rest = (p.stiffness * p.rest + spring.stiffness * spring.rest_length) / stiffness;
     }
     (p.stiffness, p.damping) = (stiffness, p.damping + spring.viscosity);
+    let dofs: Vec<usize> = (0..coordinates.chain.len()).filter(|&k| coordinates.chain[k].coordinate == c).collect();
+    match dofs[..] {
+        [dof] => model.joints[dof + 1].passive = *p,
+        _ => ignored.push(format!(
+            "ForceSet: SpringGeneralizedForce \"{}\" on coordinate \"{}\", which drives {} DOFs (coupled): not modelled by the chain's joints (kept on the coordinate: `mintorque inverse --forces actuator` subtracts it)",
+            spring.name,
+            spring.coordinate,
+            dofs.len()
+        )),
+    }
     Ok(())
 }
 

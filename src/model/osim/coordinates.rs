@@ -7,7 +7,7 @@
 use super::function::Function;
 use crate::dynamics::{rnea::rnea, Data};
 use crate::error::{Error, Result};
-use crate::model::Model;
+use crate::model::{Model, Passive};
 use nalgebra::DMatrix;
 
 /// An OpenSim coordinate: a generalized coordinate of the file (rad for rotations, m for translations).
@@ -25,6 +25,9 @@ pub struct Coordinate {
     pub clamped: bool,
     /// Whether the file locks it (kept free in the model; reported).
     pub locked: bool,
+    /// Its `SpringGeneralizedForce`s, added (`−k(q − rest) − d·q̇` on the coordinate itself; also the
+    /// chain joint's spring when the coordinate is a chain DOF of its own).
+    pub passive: Passive,
 }
 
 /// One DOF of the model's chain: `q_chain = function(q[coordinate])`.

@@ -253,6 +253,7 @@ impl<'i> Cx<'_, 'i> {
                 range: (range[0], range[1]),
                 clamped: self.flag(node, "clamped", &e, false)?,
                 locked: self.flag(node, "locked", &e, false)?,
+                passive: crate::model::Passive::default(),
             });
         }
         Ok(out)

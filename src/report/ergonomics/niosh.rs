@@ -179,12 +179,39 @@ pub struct Lift {
     pub load_kg: f64,
     /// World up (unit).
     pub up: Vec3,
+    /// The field a refusal of the lift names (`ergonomics.lift` in a task file).
+    pub field: String,
+}
+
+/// Where a lift's settings were written, for the errors: the file, the table holding the fields
+/// (`ergonomics.lift` in a task; `lift` in `mintorque inverse --lift FILE`), the field that sets gravity, and
+/// the payloads' total mass (kg) when the file has payloads (a task), `None` when the load must be given.
+pub struct Written<'a> {
+    /// The file.
+    pub origin: &'a str,
+    /// The table of the lift's fields.
+    pub table: &'a str,
+    /// The field (or model) that sets gravity.
+    pub gravity_field: &'a str,
+    /// The payloads' total mass (kg), the default load.
+    pub payload_kg: Option<f64>,
 }
 
 /// `[ergonomics.lift]` of `file` against `model` and `gravity`.
 pub fn resolve(spec: &LiftSpec, file: &TaskFile, model: &Model, gravity: &Vec3, origin: &str) -> Result<Lift> {
-    let field = |f: &str| format!("ergonomics.lift.{f}");
-    let err = |f: &str, m: String| Error::task(origin, field(f), m);
+    let payload_kg = Some(file.environment.payload.iter().map(|p| p.mass).sum());
+    resolve_in(
+        spec,
+        model,
+        gravity,
+        &Written { origin, table: "ergonomics.lift", gravity_field: "environment.gravity", payload_kg },
+    )
+}
+
+/// The lift `spec` against `model` and `gravity`; errors name the file and field as `written` says.
+pub fn resolve_in(spec: &LiftSpec, model: &Model, gravity: &Vec3, written: &Written) -> Result<Lift> {
+    let field = |f: &str| format!("{}.{f}", written.table);
+    let err = |f: &str, m: String| Error::task(written.origin, field(f), m);
     if !(spec.frequency_per_min.is_finite() && spec.frequency_per_min > 0.0) {
         return Err(err(
             "frequency_per_min",
@@ -210,38 +237,43 @@ pub fn resolve(spec: &LiftSpec, file: &TaskFile, model: &Model, gravity: &Vec3, 
     };
     let g = gravity.norm();
     if (g - 9.81).abs() > 0.02 * 9.81 {
-        let message = format!("the lifting equation is for lifts on Earth (9.81 m/s²); this task's gravity is {g:.2} m/s²");
-        return Err(Error::task(origin, "environment.gravity", message));
+        let message = format!("the lifting equation is for lifts on Earth (9.81 m/s²); the gravity here is {g:.2} m/s²");
+        return Err(Error::task(written.origin, written.gravity_field, message));
     }
-    let payload: f64 = file.environment.payload.iter().map(|p| p.mass).sum();
-    let load_kg = spec.load_kg.unwrap_or(payload);
+    let load_kg = spec.load_kg.or(written.payload_kg).unwrap_or(0.0);
     if !(load_kg.is_finite() && load_kg > 0.0) {
-        let message = "there is no load to lift: give [[environment.payload]] or ergonomics.lift.load_kg (kg, > 0)";
-        return Err(err("load_kg", message.into()));
+        let message = match written.payload_kg {
+            Some(_) => format!("there is no load to lift: give [[environment.payload]] or {} (kg, > 0)", field("load_kg")),
+            None => format!("there is no load to lift: give {} (kg, > 0)", field("load_kg")),
+        };
+        return Err(err("load_kg", message));
     }
-    let frame = |name: &str| model.frames.iter().position(|f| f.name == name);
-    let hands = match &spec.hands {
-        Some(names) if !names.is_empty() => names
-            .iter()
-            .map(|n| frame(n).ok_or_else(|| err("hands", format!("the model has no frame \"{n}\""))))
-            .collect::<Result<Vec<_>>>()?,
-        Some(_) => return Err(err("hands", "name at least one frame".into())),
-        None => match (frame("hands"), frame("left_hand"), frame("right_hand")) {
-            (Some(h), _, _) => vec![h],
-            (None, Some(l), Some(r)) => vec![l, r],
-            _ => {
-                return Err(err(
-                    "hands",
-                    "the model has no frame \"hands\" (nor \"left_hand\" and \"right_hand\"): name the hand frames".into(),
-                ))
-            }
-        },
-    };
+    let hands = hand_frames(spec, model, &err)?;
     let ankles: Vec<usize> = (1..model.joints.len()).filter(|&i| model.joints[i].name.contains("ankle")).collect();
     if ankles.is_empty() {
         return Err(err("hands", "H is measured from the ankles, and the model has no joint named *ankle*".into()));
     }
-    Ok(Lift { frequency_per_min: spec.frequency_per_min, duration, coupling, hands, ankles, load_kg, up: -gravity / g })
+    let (frequency_per_min, up, field) = (spec.frequency_per_min, -gravity / g, written.table.to_string());
+    Ok(Lift { frequency_per_min, duration, coupling, hands, ankles, load_kg, up, field })
+}
+
+/// The frames `spec` names as the hands (default `hands`, else `left_hand` and `right_hand`).
+fn hand_frames(spec: &LiftSpec, model: &Model, err: &dyn Fn(&str, String) -> Error) -> Result<Vec<usize>> {
+    let frame = |name: &str| model.frames.iter().position(|f| f.name == name);
+    match &spec.hands {
+        Some(names) if !names.is_empty() => {
+            names.iter().map(|n| frame(n).ok_or_else(|| err("hands", format!("the model has no frame \"{n}\"")))).collect()
+        }
+        Some(_) => Err(err("hands", "name at least one frame".into())),
+        None => match (frame("hands"), frame("left_hand"), frame("right_hand")) {
+            (Some(h), _, _) => Ok(vec![h]),
+            (None, Some(l), Some(r)) => Ok(vec![l, r]),
+            _ => Err(err(
+                "hands",
+                "the model has no frame \"hands\" (nor \"left_hand\" and \"right_hand\"): name the hand frames".into(),
+            )),
+        },
+    }
 }
 
 /// H, V and A of posture `q`.
@@ -299,8 +331,8 @@ pub struct LiftingIndex {
     pub lifting_index: f64,
 }
 
-/// The lift from posture `q0` at `t0` to `q1` at `t1` (s); an error naming `origin` and
-/// `ergonomics.lift` when the equation does not cover it.
+/// The lift from posture `q0` at `t0` to `q1` at `t1` (s); an error naming `origin` and the lift's field
+/// when the equation does not cover it.
 pub fn assess(
     model: &Model,
     lift: &Lift,
@@ -312,7 +344,7 @@ pub fn assess(
     let travel = (b.vertical_cm - a.vertical_cm).abs();
     let end = |time_s: f64, at: Location, which: &str| -> Result<LiftEnd> {
         let m = recommended_weight_limit(&at, travel, lift.frequency_per_min, lift.duration, lift.coupling)
-            .map_err(|m| Error::task(origin, "ergonomics.lift", format!("at the {which}: {m}")))?;
+            .map_err(|m| Error::task(origin, &lift.field, format!("at the {which} ({time_s:.3} s): {m}")))?;
         Ok(LiftEnd { time_s, location: at, multipliers: m, lifting_index: lift.load_kg / m.rwl_kg })
     };
     let (origin_end, destination) = (end(t0, a, "origin")?, end(t1, b, "destination")?);
