@@ -720,3 +720,19 @@ fn solve_structured_escalates_when_gauss_newton_crawls() {
     assert_converged(&fast, "rate 0.5, Gauss–Newton");
     assert_eq!(fast.iterations, same.iterations, "{} | {}", summary(&fast), summary(&same));
 }
+
+/// A warm start whose multipliers are far off (μ = 10⁶ against the true −0.5, at a small penalty) first
+/// drives the equality far from holding. With `warm_divergence` the solve gives up and says so; without it
+/// (the opposite condition) the same start still converges, only later.
+#[test]
+fn solve_a_diverging_warm_start_gives_up_only_when_asked() {
+    let mut p = qp();
+    let wrong = Multipliers { lambda: QP_LAMBDA.to_vec(), mu: vec![1e6] };
+    let warm = Settings { warm_start: Some(wrong), initial_penalty: Some(1.0), ..tight() };
+    let patient = AugLagLevenbergMarquardt.solve(&mut p, &QP_X, &warm, &mut |_| {});
+    assert_converged(&patient, "without the guard");
+    let guarded = Settings { warm_divergence: Some(100.0), ..warm };
+    let o = AugLagLevenbergMarquardt.solve(&mut p, &QP_X, &guarded, &mut |_| {});
+    let StopReason::WarmStartDiverged { start, violation } = o.reason else { panic!("{}", summary(&o)) };
+    assert!(!o.converged && start < 1e-12 && violation > solver::DIVERGED_VIOLATION, "{}", summary(&o));
+}
