@@ -26,7 +26,7 @@ cargo build --release --bin mintorque
 # Plan directories go beside the screenshots, so that a failure can be looked at afterwards.
 artifacts="$repo/target/browser-artifacts"
 mkdir -p "$artifacts"
-for task in pendulum double_pendulum weight_lift_earth dip_down_space moon_overhead_reach twist_lift; do
+for task in pendulum double_pendulum weight_lift_earth dip_down_space moon_overhead_reach twist_lift astronaut_handrail; do
     echo "+ mintorque plan examples/$task.toml"
     rm -rf "$artifacts/plan-$task"
     cargo run --release --quiet --bin mintorque -- plan "examples/$task.toml" --out "$artifacts/plan-$task" --quiet
@@ -40,5 +40,6 @@ ARTIFACTS_DIR="$artifacts" node tests/browser/viewer.mjs \
     "$artifacts/plan-pendulum/motion.html" "$artifacts/plan-double_pendulum/motion.html" \
     "$artifacts/plan-weight_lift_earth/motion.html" "$artifacts/plan-dip_down_space/motion.html" \
     "$artifacts/plan-moon_overhead_reach/motion.html" "$artifacts/plan-twist_lift/motion.html" \
+    "$artifacts/plan-astronaut_handrail/motion.html" \
     "$artifacts/synthetic-human/motion.html" "$artifacts/synthetic-double-pendulum/motion.html" \
     "$artifacts/synthetic-mixed/motion.html"

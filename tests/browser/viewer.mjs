@@ -55,6 +55,25 @@ async function pixelStats(page, png) {
   }, png.toString('base64'));
 }
 
+// How many pixels of a screenshot have one of the floor grid's two line colours (0x9aa5b1, 0xc9d1da; lines
+// are not lit, so they keep their colour), within a small tolerance for blending.
+async function floorPixels(page, png) {
+  return page.evaluate(async (b64) => {
+    const img = new Image();
+    img.src = `data:image/png;base64,${b64}`;
+    await img.decode();
+    const c = document.createElement('canvas');
+    c.width = img.width; c.height = img.height;
+    const g = c.getContext('2d');
+    g.drawImage(img, 0, 0);
+    const d = g.getImageData(0, 0, c.width, c.height).data;
+    const near = (i, [r, gr, b]) => Math.abs(d[i] - r) + Math.abs(d[i + 1] - gr) + Math.abs(d[i + 2] - b) <= 6;
+    let n = 0;
+    for (let i = 0; i < d.length; i += 4) if (near(i, [0x9a, 0xa5, 0xb1]) || near(i, [0xc9, 0xd1, 0xda])) n++;
+    return n;
+  }, png.toString('base64'));
+}
+
 // How many pixels differ between two screenshots of the same size (decoded in the browser).
 async function pixelsChanged(page, a, b) {
   return page.evaluate(async ([a64, b64]) => {
@@ -145,6 +164,15 @@ try {
       const capsules = await page.evaluate(() => window.mintorque.collisionShapes());
       check(`${name}: collision capsules drawn`, capsules > 0, `${capsules} capsules`);
     }
+    // The floor: drawn under a figure held by the world, none under a free-floating one (the astronaut), as
+    // the filmstrip draws no ground line. Seen, not only declared: the grid's line colours in the canvas (held
+    // figures show 6000–18000 such pixels, the astronaut's shading about 60).
+    const floor = await page.evaluate(() => ({ drawn: window.mintorque.floorDrawn(), declared: window.mintorque.floorDeclared }));
+    const floating = name.includes('astronaut');
+    const gridPixels = await floorPixels(page, canvasShot);
+    check(`${name}: ${floating ? 'no floor under the free-floating figure' : 'the floor is drawn'}`,
+      floor.drawn === !floating && floor.declared === !floating && (floating ? gridPixels < 1000 : gridPixels > 2000),
+      `floor in the scene: ${floor.drawn}, in the plan: ${floor.declared}; ${gridPixels} px of the grid's colours`);
     // The chart: one unit per axis, time in seconds, a legend entry per series inside its box (it scrolls).
     const chart = await page.evaluate(() => window.mintorque.chart());
     check(`${name}: chart axes carry one unit each`, chart.xLabel === 'time (s)' && /\((N·m|N|%)\)$/.test(chart.yLabel)
