@@ -34,7 +34,9 @@ const context = await chromium.launchPersistentContext(userDataDir, {
   viewport: { width: 1280, height: 800 },
 });
 
-// Decodes a PNG in the browser (no image library needed here) and says how varied its pixels are.
+// Decodes a PNG in the browser (no image library needed here) and says how varied its pixels are, and how
+// many have one of the floor grid's two line colours (0x9aa5b1, 0xc9d1da; lines are not lit, so they keep
+// their colour), within a small tolerance for blending.
 async function pixelStats(page, png) {
   return page.evaluate(async (b64) => {
     const img = new Image();
@@ -45,33 +47,21 @@ async function pixelStats(page, png) {
     const g = c.getContext('2d');
     g.drawImage(img, 0, 0);
     const d = g.getImageData(0, 0, c.width, c.height).data;
+    const near = (i, [r, gr, b]) => Math.abs(d[i] - r) + Math.abs(d[i + 1] - gr) + Math.abs(d[i + 2] - b) <= 6;
     const colours = new Set();
-    let differing = 0;
+    let differing = 0, floor = 0;
     for (let i = 0; i < d.length; i += 4) {
       colours.add((d[i] << 16) | (d[i + 1] << 8) | d[i + 2]);
       if (Math.abs(d[i] - d[0]) + Math.abs(d[i + 1] - d[1]) + Math.abs(d[i + 2] - d[2]) > 30) differing++;
+      if (near(i, [0x9a, 0xa5, 0xb1]) || near(i, [0xc9, 0xd1, 0xda])) floor++;
     }
-    return { colours: colours.size, differing: differing / (d.length / 4), width: c.width, height: c.height };
+    return { colours: colours.size, differing: differing / (d.length / 4), width: c.width, height: c.height, floor };
   }, png.toString('base64'));
 }
 
-// How many pixels of a screenshot have one of the floor grid's two line colours (0x9aa5b1, 0xc9d1da; lines
-// are not lit, so they keep their colour), within a small tolerance for blending.
+// How many pixels of a screenshot are the floor grid's (see pixelStats).
 async function floorPixels(page, png) {
-  return page.evaluate(async (b64) => {
-    const img = new Image();
-    img.src = `data:image/png;base64,${b64}`;
-    await img.decode();
-    const c = document.createElement('canvas');
-    c.width = img.width; c.height = img.height;
-    const g = c.getContext('2d');
-    g.drawImage(img, 0, 0);
-    const d = g.getImageData(0, 0, c.width, c.height).data;
-    const near = (i, [r, gr, b]) => Math.abs(d[i] - r) + Math.abs(d[i + 1] - gr) + Math.abs(d[i + 2] - b) <= 6;
-    let n = 0;
-    for (let i = 0; i < d.length; i += 4) if (near(i, [0x9a, 0xa5, 0xb1]) || near(i, [0xc9, 0xd1, 0xda])) n++;
-    return n;
-  }, png.toString('base64'));
+  return (await pixelStats(page, png)).floor;
 }
 
 // How many pixels differ between two screenshots of the same size (decoded in the browser).
