@@ -59,11 +59,6 @@ async function pixelStats(page, png) {
   }, png.toString('base64'));
 }
 
-// How many pixels of a screenshot are the floor grid's (see pixelStats).
-async function floorPixels(page, png) {
-  return (await pixelStats(page, png)).floor;
-}
-
 // How many pixels differ between two screenshots of the same size (decoded in the browser).
 async function pixelsChanged(page, a, b) {
   return page.evaluate(async ([a64, b64]) => {
@@ -159,7 +154,7 @@ try {
     // figures show 6000–18000 such pixels, the astronaut's shading about 60).
     const floor = await page.evaluate(() => ({ drawn: window.mintorque.floorDrawn(), declared: window.mintorque.floorDeclared }));
     const floating = name.includes('astronaut');
-    const gridPixels = await floorPixels(page, canvasShot);
+    const gridPixels = stats.floor; // the canvas shot decoded above
     check(`${name}: ${floating ? 'no floor under the free-floating figure' : 'the floor is drawn'}`,
       floor.drawn === !floating && floor.declared === !floating && (floating ? gridPixels < 1000 : gridPixels > 2000),
       `floor in the scene: ${floor.drawn}, in the plan: ${floor.declared}; ${gridPixels} px of the grid's colours`);
