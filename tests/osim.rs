@@ -7,38 +7,10 @@ use mintorque::dynamics::kinematics::{kinetic_energy, placements, potential_ener
 use mintorque::dynamics::{crba::crba, Data};
 use mintorque::model::osim::{self, Osim};
 use mintorque::model::{self, JointKind};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-fn data_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/osim")
-}
-
-fn load(name: &str) -> Osim {
-    osim::load(&data_dir().join(name)).unwrap_or_else(|e| panic!("{name}: {e}"))
-}
-
-/// OpenSim's reference forces (JSON) at seeded random states, computed now by OpenSim for `files`.
-fn opensim_reference(files: &[PathBuf]) -> serde_json::Value {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let python = root.join("target/opensim-venv/bin/python");
-    assert!(python.exists(), "{} is missing: run `bash scripts/test-deps.sh` (it makes the OpenSim venv)", python.display());
-    let out = std::process::Command::new(&python)
-        .arg(root.join("tests/osim/reference.py"))
-        .arg("reference")
-        .args(files)
-        .output()
-        .expect("run reference.py");
-    assert!(out.status.success(), "reference.py failed: {}", String::from_utf8_lossy(&out.stderr));
-    serde_json::from_slice(&out.stdout).expect("reference.py writes JSON")
-}
-
-fn numbers(v: &serde_json::Value) -> Vec<f64> {
-    v.as_array().expect("array").iter().map(|x| x.as_f64().expect("number")).collect()
-}
-
-fn max_abs(v: &[f64]) -> f64 {
-    v.iter().fold(0.0, |m, x| m.max(x.abs()))
-}
+mod common;
+use common::osim_states::{compare_with_opensim, data_dir, load, max_abs, numbers, opensim_reference};
 
 #[test]
 fn inverse_dynamics_matches_opensim() {
@@ -61,34 +33,6 @@ fn exported_models_have_opensim_dynamics() {
     });
     let worst = compare_with_opensim(&files);
     eprintln!("exported models: worst relative difference from OpenSim: {worst:e}");
-    std::fs::remove_dir_all(&dir).ok();
-}
-
-/// Joint springs and dampers are exported as OpenSim SpringGeneralizedForces and read back as they were:
-/// OpenSim's inverse dynamics of the exported file equals ours less the passive torques, to 1e-6, where the
-/// passive torques are several percent of the forces (so a file without them, or with a sign or the rest
-/// angle wrong, fails).
-#[test]
-fn exported_springs_act_in_opensim_and_read_back() {
-    let dir = std::env::temp_dir().join(format!("mintorque-osim-springs-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    let mut m = load("skeleton.osim").model;
-    for (k, j) in m.joints.iter_mut().skip(1).enumerate() {
-        let k = k as f64;
-        j.passive = model::Passive { stiffness: 40.0 + 7.0 * k, rest: 0.2 * (k % 3.0) - 0.2, damping: 2.0 + 0.5 * k };
-    }
-    let path = dir.join("springs.osim");
-    std::fs::write(&path, osim::to_osim(&m)).expect("write");
-    let back = osim::load(&path).expect("read back");
-    assert!(!back.ignored.iter().any(|l| l.contains("Spring")), "{:?}", back.ignored);
-    for (a, b) in m.joints.iter().zip(&back.model.joints) {
-        assert_eq!(a.passive, b.passive, "{}: springs read back", a.name);
-    }
-    let (worst, passive) = compare_with_opensim_passive(std::slice::from_ref(&path));
-    eprintln!(
-        "exported springs: worst relative difference from OpenSim {worst:e}; passive torques up to {passive:.3} of the forces"
-    );
-    assert!(passive > 0.02, "the springs are too weak to test anything: {passive}");
     std::fs::remove_dir_all(&dir).ok();
 }
 
@@ -127,66 +71,6 @@ fn a_plans_mot_plays_on_its_exported_osim_in_opensim() {
     let (first, last) = (numbers(&read["first"])[0], numbers(&read["last"])[0]);
     assert!((first + 70f64.to_radians()).abs() < 1e-8 && (last - 70f64.to_radians()).abs() < 1e-8, "{first} {last}");
     std::fs::remove_dir_all(&dir).ok();
-}
-
-/// Our coordinates' inverse dynamics against OpenSim's for each file; the worst relative difference (and
-/// the largest passive torque relative to OpenSim's forces, in `worst_passive`).
-fn compare_with_opensim(files: &[PathBuf]) -> f64 {
-    compare_with_opensim_passive(files).0
-}
-
-/// [`compare_with_opensim`], and the largest passive torque of a state relative to its largest force.
-fn compare_with_opensim_passive(files: &[PathBuf]) -> (f64, f64) {
-    let reference = opensim_reference(files);
-    let mut worst: f64 = 0.0;
-    let mut worst_passive: f64 = 0.0;
-    for (m, path) in reference["models"].as_array().expect("models").iter().zip(files) {
-        let file = m["file"].as_str().expect("file");
-        let mut file_worst: f64 = 0.0;
-        let osim = osim::load(path).unwrap_or_else(|e| panic!("{file}: {e}"));
-        let mut data = Data::new(&osim.model);
-        // OpenSim's coordinate order → ours, by name.
-        let names: Vec<&str> = m["coordinates"].as_array().expect("names").iter().map(|n| n.as_str().expect("name")).collect();
-        let ours: Vec<usize> = names
-            .iter()
-            .map(|n| osim.coordinates.names().iter().position(|c| c == n).unwrap_or_else(|| panic!("{file}: no coordinate {n}")))
-            .collect();
-        assert_eq!(names.len(), osim.coordinates.len(), "{file}: coordinate count");
-        for (k, s) in m["states"].as_array().expect("states").iter().enumerate() {
-            let reorder = |x: Vec<f64>| {
-                let mut y = vec![0.0; x.len()];
-                ours.iter().zip(&x).for_each(|(&i, v)| y[i] = *v);
-                y
-            };
-            let (q, v, a) = (reorder(numbers(&s["q"])), reorder(numbers(&s["v"])), reorder(numbers(&s["a"])));
-            let expected = reorder(numbers(&s["tau"]));
-            let mut tau = osim.coordinates.inverse_dynamics(&osim.model, &mut data, &q, &v, &a).expect("inverse dynamics");
-            // OpenSim's solver counts the model's springs as applied forces: what it returns is the rest,
-            // τ − τ_passive (springs sit only on DOFs that are their coordinate, q_chain = q).
-            let mut passive: f64 = 0.0;
-            for (k, dof) in osim.coordinates.chain.iter().enumerate() {
-                let c = dof.coordinate;
-                let p = osim.model.joints[k + 1].passive.torque(q[c], v[c]);
-                tau[c] -= p;
-                passive = passive.max(p.abs());
-            }
-            worst_passive = worst_passive.max(passive / max_abs(&expected));
-            let diff: Vec<f64> = tau.iter().zip(&expected).map(|(x, y)| x - y).collect();
-            let rel = max_abs(&diff) / max_abs(&expected);
-            // OpenSim's own velocities differentiate its positions here (see constant_rotation below).
-            let inconsistency = s["velocity_inconsistency"].as_f64().expect("velocity_inconsistency");
-            assert!(inconsistency < 1e-6, "{file} state {k}: OpenSim's velocities are off by {inconsistency:e} rad/s");
-            file_worst = file_worst.max(rel);
-            assert!(rel < 1e-6, "{file} state {k}: relative error {rel:e}\nours   {tau:?}\nOpenSim {expected:?}");
-        }
-        eprintln!(
-            "{file}: OpenSim {}, {} states, worst relative difference {file_worst:e}",
-            reference["opensim"],
-            m["states"].as_array().map_or(0, |s| s.len())
-        );
-        worst = worst.max(file_worst);
-    }
-    (worst, worst_passive)
 }
 
 /// `τ = d/dt(∂T/∂q̇) − ∂T/∂q + ∂V/∂q` by central differences along `q(t) = q + q̇t + ½q̈t²`, with

@@ -8,7 +8,7 @@
 //! of joints (names, rotational or translational, clamped ranges) that carries no mass and is never given
 //! to the dynamics.
 
-use super::driver::{process, record_of, subtract_passive, Inverse, Settings};
+use super::driver::{process, record_of, Forces, Inverse, Settings};
 use super::loads::Loads;
 use super::motion::Motion;
 use crate::dynamics::{rnea::rnea, Data};
@@ -65,7 +65,11 @@ pub fn inverse_dynamics(osim: &Osim, motion: &Motion, settings: &Settings, loads
             l.subtract(chain, &data, t, &mut tau_chain);
         }
         let mut tau = c.generalized_forces(q, &tau_chain)?;
-        subtract_passive(settings.forces, q, qd, &mut tau, |k| c.coordinates[k].passive);
+        if settings.forces == Forces::Actuator {
+            // OpenSim's tool subtracts the springs' forces (on a Ball or Free joint's rotation mapped from its speeds).
+            let passive = c.passive_forces(q, qd)?;
+            tau.iter_mut().zip(&passive).for_each(|(t, p)| *t -= p);
+        }
         chain_samples.push(SampleRecord { t, q: qc, qd: vc, qdd: ac, tau: tau_chain, contact_forces: Vec::new() });
         Ok(tau)
     };

@@ -96,7 +96,11 @@ pub fn summary(
                 "actuator: the net forces less the model's passive springs and dampers (OpenSim's InverseDynamicsTool)"
             }
         },
-        forces_of: if inverse.chain.is_some() { "coordinates (coupled model: Gᵀ τ_chain)" } else { "joints" },
+        forces_of: if inverse.chain.is_some() {
+            "coordinates (OpenSim's, of the chain by virtual work: Gᵀ τ_chain)"
+        } else {
+            "joints"
+        },
         gravity: r.gravity,
         ergonomics: report(model, r, chained(model, chain, inverse), series, lift)?,
     })

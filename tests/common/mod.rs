@@ -5,6 +5,7 @@ pub mod checks;
 pub mod cli;
 pub mod opensim;
 pub mod opensim_coupled;
+pub mod osim_states;
 
 use std::path::PathBuf;
 

@@ -47,7 +47,8 @@ impl From<SplineArg> for inverse::Spline {
     }
 }
 
-/// The model of `mintorque inverse`: a coupled `.osim` keeps its coordinates (its forces are theirs), an
+/// The model of `mintorque inverse`: a coupled `.osim` (or one with a spring on a Ball or Free joint's
+/// rotation) keeps its coordinates (its forces are theirs), an
 /// uncoupled one is its chain (read once, its ignored parts noted), any other model file is read by `load`
 /// as every command reads it.
 pub fn subject(path: &Path, load: impl FnOnce(&Path) -> Result<Model>) -> Result<Subject> {
@@ -55,7 +56,8 @@ pub fn subject(path: &Path, load: impl FnOnce(&Path) -> Result<Model>) -> Result
         // Read once: coupled, it keeps its coordinates; uncoupled, its chain is the model.
         let osim = mintorque::model::osim::load(path)?;
         osim.ignored.iter().for_each(|note| eprintln!("note: {}: ignored {note}", path.display()));
-        if osim.coordinates.is_coupled() {
+        // A spring on a Ball or Free joint's rotation acts on OpenSim's speeds: only the coordinates carry it.
+        if osim.coordinates.is_coupled() || osim.coordinates.has_angular_springs() {
             return Ok(Subject::Coupled(Box::new(osim)));
         }
         return Ok(Subject::Joints(osim.into_model(&path.display().to_string())?));

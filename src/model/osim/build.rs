@@ -17,7 +17,7 @@ pub(super) fn build(parsed: Parsed, origin: &str) -> Result<(Model, Coordinates,
     let Parsed { name, gravity, bodies, joints, markers, springs, mut ignored } = parsed;
     let mut model = Model::new(name, bodies[0].name.clone());
     model.gravity = gravity;
-    let mut coordinates = Coordinates { coordinates: vec![], chain: vec![] };
+    let mut coordinates = Coordinates { coordinates: vec![], chain: vec![], angular: vec![] };
     // Source lines of the model's bodies and joints (for validation errors).
     let mut lines = vec![bodies[0].line];
     // Each OpenSim body: (model body, its frame in the model body's frame) once placed.
@@ -48,6 +48,9 @@ pub(super) fn build(parsed: Parsed, origin: &str) -> Result<(Model, Coordinates,
         }
         let first = coordinates.coordinates.len();
         coordinates.coordinates.extend(j.coordinates.iter().cloned());
+        if j.angular_speeds {
+            coordinates.angular.push([first, first + 1, first + 2]);
+        }
         let (body, in_body) =
             add_joint(&mut model, &mut coordinates.chain, j, first, placed[j.parent.0].unwrap_or_default(), &child.name);
         lines.resize(model.bodies.len(), j.line);
@@ -100,9 +103,11 @@ pub(super) fn build(parsed: Parsed, origin: &str) -> Result<(Model, Coordinates,
 
 /// A coordinate spring added to its coordinate's passive spring and damper (springs on one coordinate
 /// add: `k = Σkᵢ`, `rest = Σkᵢrᵢ / k`, `d = Σdᵢ`), which is also that of the DOF that is the coordinate
-/// itself; on a coordinate that drives coupled DOFs it stays the coordinate's alone (a force on a
-/// coordinate is no single joint's torque there: `mintorque inverse --forces actuator` subtracts it from
-/// the coordinate's force) and is listed as ignored by the chain.
+/// itself. It stays the coordinate's alone, listed as ignored by the chain's joints, where the coordinate
+/// drives coupled DOFs (a force on a coordinate is no single joint's torque there) and on a Ball or Free
+/// joint's rotation (OpenSim applies it to the angular velocity, not to `q̇`: no joint spring of ours is
+/// that force); `mintorque inverse --forces actuator` subtracts it from the coordinate's force either way
+/// ([`Coordinates::passive_forces`]).
 fn add_spring(
     model: &mut Model,
     coordinates: &mut Coordinates,
@@ -125,6 +130,14 @@ fn add_spring(
     }
     (p.stiffness, p.damping) = (stiffness, p.damping + spring.viscosity);
     let dofs: Vec<usize> = (0..coordinates.chain.len()).filter(|&k| coordinates.chain[k].coordinate == c).collect();
+    if coordinates.angular_triple(c).is_some() {
+        ignored.push(format!(
+            "ForceSet: SpringGeneralizedForce \"{}\" on coordinate \"{}\" of joint \"{}\", a rotation whose OpenSim speed is an angular velocity: OpenSim applies it to that speed, which no joint spring of the model is, so plans do not feel it (kept on the coordinate: `mintorque inverse --forces actuator` subtracts it as OpenSim does)",
+            spring.name, spring.coordinate, coordinates.coordinates[c].joint
+        ));
+        return Ok(());
+    }
+    let p = &coordinates.coordinates[c].passive;
     match dofs[..] {
         [dof] => model.joints[dof + 1].passive = *p,
         _ => ignored.push(format!(

@@ -47,6 +47,19 @@ pub struct Coordinates {
     pub coordinates: Vec<Coordinate>,
     /// One per model DOF, in `q` order.
     pub chain: Vec<ChainDof>,
+    /// The rotation coordinates `[rx, ry, rz]` of every BallJoint and FreeJoint (body-fixed X-Y-Z angles,
+    /// `R_FM = Rx·Ry·Rz`): OpenSim's speeds there are the angular velocity `ω_FM` in F, `u = E(q) q̇`
+    /// ([`angular_rate_matrix`]), not `q̇`, so a SpringGeneralizedForce's damper acts on `u` and both its
+    /// terms are forces on `u` ([`Coordinates::passive_forces`]).
+    pub angular: Vec<[usize; 3]>,
+}
+
+/// `E(q)` of body-fixed X-Y-Z angles, `ω_F = E q̇` (columns: the axes of the three rotations in F):
+/// `E = [x̂, Rx(q₀) ŷ, Rx(q₀) Ry(q₁) ẑ]`.
+pub fn angular_rate_matrix(q0: f64, q1: f64) -> [[f64; 3]; 3] {
+    let (s0, c0) = q0.sin_cos();
+    let (s1, c1) = q1.sin_cos();
+    [[1.0, 0.0, s1], [0.0, c0, -s0 * c1], [0.0, s0, c0 * c1]]
 }
 
 impl Coordinates {
@@ -145,6 +158,39 @@ impl Coordinates {
             .iter()
             .enumerate()
             .any(|(k, d)| d.coordinate == c && model.joints[k + 1].kind != crate::model::JointKind::Prismatic)
+    }
+
+    /// The triple of [`Coordinates::angular`] coordinate `c` belongs to, if any.
+    pub fn angular_triple(&self, c: usize) -> Option<[usize; 3]> {
+        self.angular.iter().copied().find(|t| t.contains(&c))
+    }
+
+    /// The coordinates' SpringGeneralizedForces at `(q, q̇)` as forces conjugate to `q̇` (N·m or N), what
+    /// OpenSim's InverseDynamicsTool subtracts: `−k(q − rest) − d·q̇` on each coordinate, but on the
+    /// rotations of a Ball or Free joint OpenSim applies `f_u,i = −kᵢ(qᵢ − restᵢ) − dᵢ·uᵢ` to its speeds
+    /// `u = E q̇`, which is `Eᵀ f_u` on `q̇` (virtual power `f_uᵀ u = (Eᵀ f_u)ᵀ q̇`).
+    pub fn passive_forces(&self, q: &[f64], v: &[f64]) -> Result<Vec<f64>> {
+        self.check_len(q, "q")?;
+        self.check_len(v, "v")?;
+        let p = |c: usize, rate: f64| self.coordinates[c].passive.torque(q[c], rate);
+        let mut f: Vec<f64> = (0..self.len()).map(|c| p(c, v[c])).collect();
+        for t in &self.angular {
+            let e = angular_rate_matrix(q[t[0]], q[t[1]]);
+            // u = E q̇; f_u,i = −kᵢ(qᵢ − restᵢ) − dᵢ uᵢ.
+            let u: [f64; 3] = std::array::from_fn(|i| (0..3).map(|j| e[i][j] * v[t[j]]).sum());
+            let f_u: [f64; 3] = std::array::from_fn(|i| p(t[i], u[i]));
+            // f_q = Eᵀ f_u.
+            for j in 0..3 {
+                f[t[j]] = (0..3).map(|i| e[i][j] * f_u[i]).sum();
+            }
+        }
+        Ok(f)
+    }
+
+    /// Whether a spring or damper sits on a Ball or Free joint's rotation (its forces are on OpenSim's
+    /// speeds: [`Coordinates::passive_forces`]).
+    pub fn has_angular_springs(&self) -> bool {
+        self.angular.iter().flatten().any(|&c| self.coordinates[c].passive != Passive::default())
     }
 
     fn check_len(&self, x: &[f64], what: &str) -> Result<()> {

@@ -30,6 +30,9 @@ pub(super) struct OsimJoint {
     pub elements: Vec<Element>,
     /// The joint's coordinates, in file order.
     pub coordinates: Vec<Coordinate>,
+    /// A BallJoint or FreeJoint: its first three coordinates are body-fixed X-Y-Z angles whose OpenSim
+    /// speeds are the angular velocity in F ([`super::Coordinates::angular`]).
+    pub angular_speeds: bool,
 }
 
 /// A marker: a point (m) on a body.
@@ -175,7 +178,8 @@ impl<'i> Cx<'_, 'i> {
             "CustomJoint" => self.spatial_transform(node, &what, &coordinates)?,
             _ => joints::elements_of(ty, coordinates.len()).map_err(|m| self.err(node, &what, m))?,
         };
-        Ok(OsimJoint { name, line: self.line(node), parent, child, elements, coordinates })
+        let angular_speeds = matches!(ty, "BallJoint" | "FreeJoint");
+        Ok(OsimJoint { name, line: self.line(node), parent, child, elements, coordinates, angular_speeds })
     }
 
     /// The frame a socket names: a body, the ground, or a `PhysicalOffsetFrame` of the joint (or of a body),
