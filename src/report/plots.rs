@@ -9,6 +9,7 @@ use crate::error::{Error, Result};
 use crate::model::{JointKind, Model};
 use plotters::prelude::*;
 
+mod axis;
 pub(crate) mod legend;
 pub(crate) use legend::Entry;
 
@@ -172,12 +173,14 @@ pub(crate) fn time_chart<'a, DB: DrawingBackend + 'a>(
         .y_label_area_size(58)
         .build_cartesian_2d(x.0..x.1, y.0..y.1)
         .map_err(drawing_error)?;
+    let y_tick = |v: &f64| axis::tick_label(*v, y.1 - y.0);
     chart
         .configure_mesh()
         .x_desc("time (s)")
         .y_desc(unit)
         .x_labels(6)
         .y_labels(5)
+        .y_label_formatter(&y_tick)
         .light_line_style(WHITE.mix(0.0))
         .draw()
         .map_err(drawing_error)?;
