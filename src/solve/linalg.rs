@@ -9,6 +9,7 @@
 use nalgebra::DMatrix;
 
 mod cholesky;
+mod gram;
 pub use cholesky::Cholesky;
 
 /// The matrix handed to [`Cholesky::factor`] is not (numerically) positive definite.
@@ -118,33 +119,6 @@ impl SymmetricMatrix {
         }
     }
 
-    /// `A += w v vᵀ` for a vector `v` whose entries belong to the contiguous columns
-    /// `first, first + 1, …, first + v.len() − 1`, known to fit in the band. This is the common case of a
-    /// Jacobian row over consecutive control points, and the inner loops become contiguous axpys.
-    pub(crate) fn add_outer_contiguous(&mut self, first: usize, w: f64, v: &[f64]) {
-        debug_assert!(first + v.len() <= self.n && v.len() <= self.bandwidth() + 1);
-        match &mut self.storage {
-            Storage::Banded { bandwidth, band } => {
-                // Row c = first + p of the lower band holds columns first..=c contiguously.
-                let b = *bandwidth;
-                for (p, &vp) in v.iter().enumerate() {
-                    let c = first + p;
-                    let start = c * (b + 1) + (first + b - c);
-                    axpy(w * vp, &v[..=p], &mut band[start..=start + p]);
-                }
-            }
-            Storage::Dense(m) => {
-                // Column c = first + q (column-major) holds rows c..first+len contiguously.
-                for (q, &vq) in v.iter().enumerate() {
-                    let c = first + q;
-                    let column = &mut m.column_mut(c);
-                    let slice = &mut column.as_mut_slice()[c..first + v.len()];
-                    axpy(w * vq, &v[q..], slice);
-                }
-            }
-        }
-    }
-
     /// `A += w v vᵀ` for a vector `v` whose entries belong to the ascending columns `cols`, known to fit in
     /// the band: a Jacobian row that skips columns (a torque row, supported on the joints of its chain).
     pub(crate) fn add_outer_sorted(&mut self, cols: &[usize], w: f64, v: &[f64]) {
@@ -215,13 +189,6 @@ impl SymmetricMatrix {
     /// The full matrix (tests, diagnostics).
     pub fn to_dense(&self) -> DMatrix<f64> {
         DMatrix::from_fn(self.n, self.n, |i, j| self.get(i, j))
-    }
-}
-
-/// `y += a x`.
-fn axpy(a: f64, x: &[f64], y: &mut [f64]) {
-    for (yi, xi) in y.iter_mut().zip(x) {
-        *yi += a * xi;
     }
 }
 

@@ -110,27 +110,75 @@ impl Cholesky {
     }
 }
 
+/// Rows of `L` computed together ([`factor_rows`]).
+const ROWS: usize = 8;
+
 /// Row-oriented (Crout) banded Cholesky, overwriting the lower band of `A` with `L`:
 /// `L[i][k] = (A[i][k] − Σ_{j<k} L[i][j] L[k][j]) / L[k][k]`, `L[i][i] = √(A[i][i] − Σ_{j<i} L[i][j]²)`,
 /// where the sums run only over the band, which the factor inherits from `A` (no fill-in outside it).
+/// Rows go [`ROWS`] at a time: each sum is still added in ascending `j`, so the factor is that of one
+/// row at a time, bit for bit, but the group's sums are independent chains the processor overlaps.
 fn banded_cholesky_in_place(n: usize, b: usize, l: &mut [f64]) -> Result<(), NotPositiveDefinite> {
-    let w = b + 1;
-    let at = |i: usize, k: usize| i * w + (k + b - i);
-    for i in 0..n {
-        let i0 = i.saturating_sub(b);
-        for k in i0..i {
-            let j0 = i0.max(k.saturating_sub(b));
-            let dot: f64 = l[at(i, j0)..at(i, k)].iter().zip(&l[at(k, j0)..at(k, k)]).map(|(x, y)| x * y).sum();
-            l[at(i, k)] = (l[at(i, k)] - dot) / l[at(k, k)];
+    let mut i = 0;
+    while i + ROWS <= n {
+        factor_rows::<ROWS>(b, l, i)?;
+        i += ROWS;
+    }
+    (i..n).try_for_each(|i| factor_rows::<1>(b, l, i))
+}
+
+/// Rows `i … i + R − 1` of `L`, the rows above done. Row `i + r`'s band starts at column
+/// `s_r = i + r − b`, and every sum of its columns runs over `j = s_r … k − 1`.
+fn factor_rows<const R: usize>(b: usize, l: &mut [f64], i: usize) -> Result<(), NotPositiveDefinite> {
+    // Entry (row, j) of the band sits at origin(row) + j.
+    let origin = |row: usize| row * (b + 1) + b - row;
+    let start: [usize; R] = std::array::from_fn(|r| (i + r).saturating_sub(b));
+    let common = start[R - 1];
+    // The columns k < s_{R−1} some rows reach, row by row: L[i+r][k] = (A − Σ_{j=s_r}^{k−1} L[i+r][j] L[k][j]) / L[k][k].
+    for r in 0..R {
+        for k in start[r]..common.min(i) {
+            set_below(l, origin, i + r, k, start[r]);
         }
-        let sq: f64 = l[at(i, i0)..at(i, i)].iter().map(|x| x * x).sum();
-        let d = l[at(i, i)] - sq;
+    }
+    // Columns s_{R−1} ≤ k < i of every row: the R sums at once, each in ascending j.
+    for k in common..i {
+        let (ok, lkk) = (origin(k), l[origin(k) + k]);
+        let mut sum: [f64; R] = std::array::from_fn(|r| dot(l, origin(i + r), ok, start[r], common));
+        for j in common..k {
+            let lkj = l[ok + j];
+            for (r, s) in sum.iter_mut().enumerate() {
+                *s += l[origin(i + r) + j] * lkj;
+            }
+        }
+        for (r, s) in sum.iter().enumerate() {
+            let e = origin(i + r) + k;
+            l[e] = (l[e] - s) / lkk;
+        }
+    }
+    // The group's own columns i ≤ k < i + r and each diagonal L[i+r][i+r] = √(A − Σ_{j=s_r}^{i+r−1} L[i+r][j]²).
+    for r in 0..R {
+        let row = i + r;
+        for k in i.max(start[r])..row {
+            set_below(l, origin, row, k, start[r]);
+        }
+        let d = l[origin(row) + row] - dot(l, origin(row), origin(row), start[r], row);
         if !(d > 0.0 && d.is_finite()) {
-            return Err(NotPositiveDefinite { pivot: i });
+            return Err(NotPositiveDefinite { pivot: row });
         }
-        l[at(i, i)] = d.sqrt();
+        l[origin(row) + row] = d.sqrt();
     }
     Ok(())
+}
+
+/// `L[row][k] = (A[row][k] − Σ_{j=from}^{k−1} L[row][j] L[k][j]) / L[k][k]`.
+fn set_below(l: &mut [f64], origin: impl Fn(usize) -> usize, row: usize, k: usize, from: usize) {
+    let (or, ok) = (origin(row), origin(k));
+    l[or + k] = (l[or + k] - dot(l, or, ok, from, k)) / l[ok + k];
+}
+
+/// `Σ_{j=from}^{to−1} l[a + j] · l[c + j]`, added in ascending `j` (as `Iterator::sum` adds).
+fn dot(l: &[f64], a: usize, c: usize, from: usize, to: usize) -> f64 {
+    l[a + from..a + to].iter().zip(&l[c + from..c + to]).map(|(x, y)| x * y).sum()
 }
 
 /// `L y = b` forwards, then `Lᵀ x = y` backwards by columns of `Lᵀ` (= rows of `L`, contiguous).
@@ -148,6 +196,32 @@ fn banded_solve_in_place(n: usize, b: usize, l: &[f64], x: &mut [f64]) {
         let i0 = i.saturating_sub(b);
         for (xk, lik) in x[i0..i].iter_mut().zip(&l[at(i, i0)..at(i, i)]) {
             *xk -= lik * xi;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Rows factorised [`ROWS`] at a time give the factor of one row at a time bit for bit, at every
+    /// bandwidth from diagonal to wider than a group and sizes that leave a partial group.
+    #[test]
+    fn grouped_rows_give_the_one_row_factor_bit_for_bit() {
+        for (n, b) in [(1, 0), (9, 0), (10, 1), (17, 2), (23, 7), (40, 8), (61, 13), (50, 49)] {
+            let w = b + 1;
+            let mut a = vec![0.0; n * w];
+            for i in 0..n {
+                for k in i.saturating_sub(b)..=i {
+                    let v = ((i * 17 + k * 29) % 31) as f64 / 31.0 - 0.5;
+                    a[i * w + (k + b - i)] = if k == i { 2.0 + (b as f64) } else { v };
+                }
+            }
+            let mut grouped = a.clone();
+            banded_cholesky_in_place(n, b, &mut grouped).unwrap();
+            let mut single = a;
+            (0..n).try_for_each(|i| factor_rows::<1>(b, &mut single, i)).unwrap();
+            assert_eq!(grouped, single, "n = {n}, b = {b}");
         }
     }
 }
