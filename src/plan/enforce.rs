@@ -1,6 +1,7 @@
 //! Refinement until the limits hold between the nodes ([`super::between`]): check the solved motion on the
 //! dense grid; where a row group misses its tolerance, add check nodes at the worst time of every
-//! offending knot span (inequality rows at weight 0 in the objective, or loop closures) and re-solve from
+//! offending knot span, and of every span where that group is over its bound by less than its tolerance
+//! ([`between::check_near`]; inequality rows at weight 0 in the objective, or loop closures) and re-solve from
 //! the previous solution, warm-started with its multipliers (the new rows' start at 0), with at most the
 //! first solve's iterations — and where that does not converge, from the initial guess `guess`, cold (the
 //! bundled examples converge so where the warm re-solve crawls, docs/task-file.md). Repeat until the
@@ -47,11 +48,11 @@ pub(super) fn enforce(
     let mut rounds = 0;
     let first_iterations = run.outcome.iterations;
     loop {
-        let violations = between::check(&spec, &run.outcome.x, b.per_span, &b.tolerances)?;
+        let (violations, near) = between::check_near(&spec, &run.outcome.x, b.per_span, &b.tolerances)?;
         if violations.is_empty() {
             return Ok(Enforced { run, spec, violations, rounds });
         }
-        let more = between::more_nodes(&violations, &spec.check_nodes);
+        let more = between::more_nodes(violations.iter().chain(&near), &spec.check_nodes);
         let left = settings.max_iterations.saturating_sub(run.outcome.iterations);
         let why = if !run.outcome.converged {
             None // the solve itself did not converge: its own reason stands
