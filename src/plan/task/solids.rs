@@ -108,7 +108,7 @@ pub(super) fn collisions(model: &Model, specs: &[CollisionSpec], obstacles: &[Ob
         let explicit = c.bodies.is_some();
         let bodies = match &c.bodies {
             Some(names) => {
-                names.iter().map(|n| body(model, n, &format!("{field}.bodies"), origin)).collect::<Result<Vec<_>>>()?
+                names.iter().map(|n| body(model, n, false, &format!("{field}.bodies"), origin)).collect::<Result<Vec<_>>>()?
             }
             None => (1..model.bodies.len()).filter(|&b| !model.collision_capsules(b).is_empty()).collect(),
         };
@@ -120,7 +120,7 @@ pub(super) fn collisions(model: &Model, specs: &[CollisionSpec], obstacles: &[Ob
             out.extend(bodies.iter().map(|&b| Collision { body: b, other: Collider::Obstacle(o), margin: c.margin }));
         }
         for name in &c.with {
-            let other = body(model, name, &format!("{field}.with"), origin)?;
+            let other = body(model, name, true, &format!("{field}.with"), origin)?;
             for &b in &bodies {
                 if model.adjacent_solids(b, other) {
                     if explicit {
@@ -139,14 +139,16 @@ pub(super) fn collisions(model: &Model, specs: &[CollisionSpec], obstacles: &[Ob
     Ok(out)
 }
 
-/// The index of the body `name`, which must have a collision shape.
-fn body(model: &Model, name: &str, field: &str, origin: &str) -> Result<usize> {
-    let solid: Vec<&str> = (1..model.bodies.len())
+/// The index of the body `name`, which must have a collision shape; with `fixed_ok` it may be the fixed
+/// root (index 0, with the bodies welded to it: a `with` side that does not move, e.g. the welded legs).
+fn body(model: &Model, name: &str, fixed_ok: bool, field: &str, origin: &str) -> Result<usize> {
+    let first = usize::from(!fixed_ok);
+    let solid: Vec<&str> = (first..model.bodies.len())
         .filter(|&b| !model.collision_capsules(b).is_empty())
         .map(|b| model.bodies[b].name.as_str())
         .collect();
     match model.bodies.iter().position(|b| b.name == name) {
-        Some(b) if b > 0 && !model.collision_capsules(b).is_empty() => Ok(b),
+        Some(b) if (b > 0 || fixed_ok) && !model.collision_capsules(b).is_empty() => Ok(b),
         Some(_) => Err(Error::task(
             origin,
             field,

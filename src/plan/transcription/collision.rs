@@ -105,7 +105,7 @@ impl Collisions {
 
 /// The closest capsule pair of `spec` in posture `q` relative to its margin: `(pair description,
 /// distance (m), margin (m))` of the pair with the least `d − margin`, or `None` without pairs.
-pub(crate) fn worst_clearance(spec: &Spec, q: &[f64]) -> Option<(String, f64, f64)> {
+pub fn worst_clearance(spec: &Spec, q: &[f64]) -> Option<(String, f64, f64)> {
     let collisions = Collisions::new(spec);
     let mut data = Data::new(&spec.model);
     kinematics::placements(&spec.model, &mut data, q);

@@ -38,6 +38,7 @@ use crate::dynamics::{kinematics, rnea::rnea, rnea_derivatives::rnea_derivatives
 use crate::solve::{ConstraintKind, Dims, Evaluation, Patterns, Problem, RowFamily, Scales, SymmetricMatrix};
 use crate::spatial::{Force, Vec3};
 use crate::trajectory::bspline::{BasisAt, CubicBSpline, Nodes};
+pub use collision::worst_clearance;
 pub use constraints::IneqRow;
 pub use layout::Layout;
 pub use measure::{Measured, RowKind};
