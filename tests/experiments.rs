@@ -4,7 +4,7 @@
 //! how each threshold was chosen). Each example is planned once per test binary and shared (`planned`).
 
 use mintorque::dynamics::{kinematics, rnea::rnea, Data};
-use mintorque::plan::{self, task::Task, NodeValues, Plan, Spec};
+use mintorque::plan::{self, task::Task, transcription::worst_clearance, NodeValues, Plan, Spec};
 use mintorque::spatial::Vec3;
 use std::collections::HashMap;
 use std::path::Path;
@@ -231,6 +231,15 @@ fn weight_lift() {
         let cop_x = -w.n.y / w.f.z;
         assert!(cop_x > b.x[0] - 0.002 && cop_x < b.x[1] + 0.002, "centre of pressure at {cop_x} m at t = {}", s.t);
     }
+    // The bar stays in front of the trunk, the head and the thighs (1 cm, its collision margin) at every
+    // sample in all three: the minimum-torque bar otherwise takes the short way, through the chest.
+    for (run, name) in [(&earth, "earth"), (&mars, "mars"), (&space, "space")] {
+        assert!(!run.spec.collisions.is_empty(), "{name}: no collision constraint, the test would prove nothing");
+        for s in &run.samples {
+            let (pair, d, margin) = worst_clearance(&run.spec, &s.q).unwrap();
+            assert!(d > margin - 1e-3, "{name}: {pair} {:.1} mm apart at t = {:.3} s", d * 1e3, s.t);
+        }
+    }
     // (The paper adds that in space he leans back to lower his torques, while on Earth he must keep his
     // balance. Our model does not show it: the trunk arches back further on Earth, to bring the bar over the
     // feet, and the space motion made under Earth's gravity would keep its centre of pressure inside the
@@ -245,8 +254,14 @@ fn balance_constraint_binds() {
         let cop: Vec<f64> = r.samples.iter().map(|s| -s.root_wrench.n.y / s.root_wrench.f.z).collect();
         (cop.iter().cloned().fold(f64::INFINITY, f64::min), cop.iter().cloned().fold(f64::NEG_INFINITY, f64::max))
     };
-    let free = planned_with("weight_lift_earth", "weight lift, no balance", |t| t.spec.balance = None);
+    // (Both without the bar's collision constraint: with it and the narrow support the solve reaches its
+    // time limit; the balance is what is tested here.)
+    let free = planned_with("weight_lift_earth", "weight lift, no balance", |t| {
+        t.spec.balance = None;
+        t.spec.collisions.clear();
+    });
     let narrow = planned_with("weight_lift_earth", "weight lift, narrow support", |t| {
+        t.spec.collisions.clear();
         t.spec.balance = Some(mintorque::plan::Balance { x: [0.01, 0.05], y: [-0.15, 0.15], ground_z: 0.0 });
         // A binding balance needs more nodes (8 per span) and iterations to hold between the nodes.
         t.spec.nodes_per_span = 8;
@@ -325,10 +340,12 @@ fn push_up() {
 /// reason (docs/experiments.md); an excuse that has gone stale fails the test too.
 #[test]
 fn no_joint_rides_its_limits() {
-    // (example, joint, side): why each rides its limit is in docs/experiments.md. None does today: the
-    // one-hand carry, the stoop and squat lifts keep off their ranges' ends with the posture term, the Mars
-    // weight lift with Newton's lower minimum (their task files say how). The list stays, checked both ways.
-    const EXCEPTIONS: &[(&str, &str, &str)] = &[];
+    // (example, joint, side): why each rides its limit is in docs/experiments.md. The one-hand carry, the
+    // stoop and squat lifts keep off their ranges' ends with the posture term, the Mars weight lift with
+    // Newton's lower minimum (their task files say how). The Earth weight lift, its bar kept in front of the
+    // body, tilts the pelvis back onto the hip's −30° end under a flexed lumbar spine to keep its balance
+    // (not natural, not fixed). The list stays, checked both ways.
+    const EXCEPTIONS: &[(&str, &str, &str)] = &[("weight_lift_earth", "hip", "lower")];
     let mut failures = Vec::new();
     let mut ridden = Vec::new();
     for e in plan::examples::ALL {

@@ -179,7 +179,7 @@ pub fn check(spec: &Spec, x: &[f64], per_span: usize, tolerances: &Tolerances) -
 /// [`check`], and beside each inequality row group it finds, the knot spans where that group is over its
 /// bound by less than its tolerance (each with its worst point): where the next solve, with check nodes
 /// only at the missed spans, tends to push it over — so the refinement adds check nodes there too, and one
-/// round catches what took several (`weight_lift_earth`: five rounds and 1537 iterations, now four and 874).
+/// round catches what took several (`weight_lift_earth` as it was then: five rounds and 1537 iterations, then four and 874).
 pub(super) fn check_near(
     spec: &Spec,
     x: &[f64],
