@@ -33,7 +33,10 @@ pub fn text_table(e: &Ergonomics) -> String {
     out.push('\n');
     for j in e.joints.iter().filter(|j| !j.intervals_above_limit.is_empty()) {
         let spans: Vec<String> = j.intervals_above_limit.iter().map(|[a, b]| format!("{a:.3}–{b:.3} s")).collect();
-        let _ = writeln!(out, "{} beyond its limit: {}", j.name, spans.join(", "));
+        // How far over, so that a plan within the between-node check's tolerance (0.5 % by default) is not
+        // read as one far beyond it.
+        let most = j.peak_fraction_of_limit.map_or_else(String::new, |f| format!(" (at most {:.1} % of it)", f * 100.0));
+        let _ = writeln!(out, "{} beyond its limit: {}{most}", j.name, spans.join(", "));
     }
     measures_text(e, &mut out);
     out
