@@ -102,6 +102,12 @@ fn an_infeasible_task_names_the_constraint_it_cannot_meet() {
     let (code, _, stderr) = run(mintorque().args(["plan", "-q", "--out"]).arg(dir.join("out")).arg(&task));
     assert_eq!(code, 3, "{stderr}");
     assert!(stderr.contains("torque limit") && (stderr.contains("shoulder") || stderr.contains("elbow")), "{stderr}");
+    // It gives up as soon as the inner solver is stuck twice far from feasibility — no polish from there —
+    // and says by how much in N·m.
+    assert!(stderr.contains("stuck short of feasibility") && stderr.contains("N·m over the 2.0 N·m limit"), "{stderr}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("out/summary.json")).unwrap()).unwrap();
+    assert!(summary["starts"].as_array().unwrap().iter().all(|s| s["polished"] == false), "{summary}");
 }
 
 #[test]

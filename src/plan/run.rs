@@ -7,7 +7,7 @@ use super::guess::{initial_x, objective_at};
 use super::multistart::{self, MultiStart, StartReport};
 use super::{validate, Plan, SolverKind, Spec, Transcription};
 use crate::error::{Error, Result};
-use crate::solve::{self, Outcome, Problem, Progress, Settings, Solver, StopReason};
+use crate::solve::{self, Outcome, Problem, Progress, Settings, Solver, StopReason, STUCK_FAR_FROM_FEASIBLE};
 use std::time::{Duration, Instant};
 
 /// Plans the motion of `spec` from its initial guess: validates it, builds the guess, solves, and checks the
@@ -67,17 +67,32 @@ pub fn plan_with_starts(
 /// violation times the constraint's scale is its raw value (`|h|`, or `g⁺`: "holds" when it does), so
 /// nothing is evaluated again.
 fn name_in_units(outcome: &mut Outcome, problem: &Transcription) {
-    let Some(worst) = &mut outcome.worst_constraint else { return };
+    if let Some(units) = worst_in_units(outcome, problem) {
+        let worst = outcome.worst_constraint.as_mut().expect("named only with a worst constraint");
+        worst.name = format!("{}: {units}", worst.name);
+    }
+}
+
+/// The worst constraint's violation in physical units (`None` without one, or if it is not finite).
+fn worst_in_units(outcome: &Outcome, problem: &Transcription) -> Option<String> {
+    let worst = outcome.worst_constraint.as_ref()?;
     if !outcome.worst_violation.is_finite() {
-        return;
+        return None;
     }
     let scales = problem.scales();
     let scale = match worst.kind {
         solve::ConstraintKind::Equality => scales.eq[worst.index],
         solve::ConstraintKind::Inequality => scales.ineq[worst.index],
     };
-    let raw = outcome.worst_violation * scale;
-    worst.name = format!("{}: {}", worst.name, problem.violation_in_units(worst.kind, worst.index, raw));
+    Some(problem.violation_in_units(worst.kind, worst.index, outcome.worst_violation * scale))
+}
+
+/// A start stuck short of feasibility says by how much in physical units too (mm, degrees, N·m).
+fn stuck_in_units(outcome: &mut Outcome, problem: &Transcription) {
+    let units = worst_in_units(outcome, problem);
+    if let (StopReason::StuckInfeasible { worst, .. }, Some(units)) = (&mut outcome.reason, units) {
+        *worst = format!("{worst} ({units})");
+    }
 }
 
 /// One start's result.
@@ -112,13 +127,11 @@ pub(super) fn run_start(
         SolverKind::AuglagBfgs => &[],
     };
     let mut polished = false;
+    // Every phase spends from the one budget, kept or not: `spent` counts them all.
+    let mut spent = Spent::of(&outcome);
     for &polisher in polishers {
-        let left = settings.max_iterations.saturating_sub(outcome.iterations);
-        if outcome.converged
-            || !matches!(outcome.reason, StopReason::Stalled | StopReason::NoProgress { .. } | StopReason::MaxIterations)
-            || left == 0
-            || remaining(deadline).is_some_and(|t| t <= 0.0)
-        {
+        let left = settings.max_iterations.saturating_sub(spent.iterations);
+        if !worth_polishing(&outcome) || left == 0 || remaining(deadline).is_some_and(|t| t <= 0.0) {
             break;
         }
         let polish_settings = Settings {
@@ -129,17 +142,50 @@ pub(super) fn run_start(
             ..settings.clone()
         };
         let polish = solve_once(polisher, &mut problem, &outcome.x, &polish_settings, observer);
+        spent.add(&polish);
         if polish.converged || polish.worst_violation <= outcome.worst_violation && polish.objective <= outcome.objective {
             polished = true;
-            outcome = Outcome {
-                iterations: outcome.iterations + polish.iterations,
-                evaluations: outcome.evaluations + polish.evaluations,
-                outer_iterations: outcome.outer_iterations + polish.outer_iterations,
-                ..polish
-            };
+            outcome = polish;
         }
     }
+    spent.charge(&mut outcome);
+    stuck_in_units(&mut outcome, &problem);
     Ok(Run { outcome, polished, seconds: started.elapsed().as_secs_f64() })
+}
+
+/// Whether a phase's result is one a polish can finish: it stalled, crawled or ran out of iterations
+/// near feasibility (scaled violation at most [`STUCK_FAR_FROM_FEASIBLE`]). Far from it the polish
+/// only spends the budget: the solve is stuck short of feasibility ([`StopReason::StuckInfeasible`]).
+fn worth_polishing(outcome: &Outcome) -> bool {
+    !outcome.converged
+        && matches!(outcome.reason, StopReason::Stalled | StopReason::NoProgress { .. } | StopReason::MaxIterations)
+        && outcome.worst_violation <= STUCK_FAR_FROM_FEASIBLE
+}
+
+/// What a start's phases spent, kept or not.
+struct Spent {
+    iterations: usize,
+    outer_iterations: usize,
+    evaluations: usize,
+}
+
+impl Spent {
+    fn of(outcome: &Outcome) -> Self {
+        Spent { iterations: outcome.iterations, outer_iterations: outcome.outer_iterations, evaluations: outcome.evaluations }
+    }
+
+    fn add(&mut self, outcome: &Outcome) {
+        self.iterations += outcome.iterations;
+        self.outer_iterations += outcome.outer_iterations;
+        self.evaluations += outcome.evaluations;
+    }
+
+    /// The start's outcome reports everything it spent.
+    fn charge(&self, outcome: &mut Outcome) {
+        outcome.iterations = self.iterations;
+        outcome.outer_iterations = self.outer_iterations;
+        outcome.evaluations = self.evaluations;
+    }
 }
 
 /// One solve of `problem` from `x0` by `solver`.

@@ -75,6 +75,11 @@ pub struct Settings {
     pub cancel: Cancel,
 }
 
+/// The scaled violation above which an inner solver stuck twice in a row ends the solve as
+/// [`StopReason::StuckInfeasible`] rather than [`StopReason::Stalled`]: a thousand times the default
+/// `tol_violation`, far from a precision problem — and the planner's polish is not tried from there.
+pub const STUCK_FAR_FROM_FEASIBLE: f64 = 1e-3;
+
 /// The scaled violation below which a warm start is never said to have diverged, however it grew.
 pub const DIVERGED_VIOLATION: f64 = 1e-2;
 
@@ -191,6 +196,18 @@ pub enum StopReason {
         /// Its scaled violation.
         violation: f64,
     },
+    /// The inner solver got stuck twice in a row (stalled or line search failed) with the constraints still
+    /// far from met (scaled violation above [`STUCK_FAR_FROM_FEASIBLE`]), though the penalty had grown to
+    /// `penalty`: no feasible point was found near this start — typically a start inside an obstacle or
+    /// across a limit it cannot be pulled back over. Names the worst constraint and its scaled violation.
+    StuckInfeasible {
+        /// The worst constraint's name.
+        worst: String,
+        /// Its scaled violation.
+        violation: f64,
+        /// `w_p` when the solve gave up.
+        penalty: f64,
+    },
     /// A warm start went astray: a multiplier update left the scaled violation at `violation`, more than
     /// [`Settings::warm_divergence`] times the `start`'s.
     WarmStartDiverged {
@@ -227,6 +244,11 @@ impl fmt::Display for StopReason {
             StopReason::Infeasible { worst, violation } => {
                 write!(f, "infeasible: {worst} still violated by {violation:.3e} (scaled) at the largest penalty")
             }
+            StopReason::StuckInfeasible { worst, violation, penalty } => write!(
+                f,
+                "stuck short of feasibility: {worst} still violated by {violation:.3e} (scaled) with the penalty \
+                 at {penalty:.2e}; no feasible point found near this start"
+            ),
             StopReason::WarmStartDiverged { start, violation } => {
                 write!(f, "the warm start diverged: the scaled violation grew from {start:.2e} to {violation:.2e}")
             }
