@@ -20,9 +20,17 @@ pub fn residual(r: &Mat3, axes: &[Vec3], q: &[f64]) -> f64 {
     rotation_vector(&(r * chain_rotation(axes, q).transpose())).norm()
 }
 
-/// `θ·n` of a rotation matrix (its logarithm).
+/// `θ·n` of a rotation matrix (its logarithm), from its quaternion `(w, v)`: `θ = 2·atan2(|v|, |w|)`, `n = ±v/|v|`.
+/// Not from `acos((tr R − 1)/2)`: a product of rotations rounded to `tr R = 3 + ε` made that NaN (a BVH whose
+/// every frame matched its chain to rounding read back as NaN).
 fn rotation_vector(r: &Mat3) -> Vec3 {
-    Rotation3::from_matrix_unchecked(*r).scaled_axis()
+    let q = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(*r));
+    let (w, v) = (q.scalar(), q.vector().into_owned());
+    let n = v.norm();
+    if n == 0.0 {
+        return Vec3::zeros();
+    }
+    v * (w.signum() * 2.0 * n.atan2(w.abs()) / n)
 }
 
 /// The chain angles making `r` (as nearly as the chain can), near `previous` when given.
@@ -91,6 +99,17 @@ fn polish(r: &Mat3, axes: &[Vec3], mut q: Vec<f64>) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_rotation_rounded_past_a_trace_of_three_has_a_finite_logarithm() {
+        // `tr R` a hair above 3 (as a product of exact rotations can round to): `acos` of it is NaN.
+        let mut r = axis_angle(&Vec3::new(0.3, -0.5, 0.8).normalize(), 1e-8);
+        r *= 1.0 + 4e-16;
+        assert!(r.trace() > 3.0);
+        assert!(rotation_vector(&r).iter().all(|v| v.is_finite() && v.abs() < 2e-8), "{:?}", rotation_vector(&r));
+        let turn = axis_angle(&Vec3::new(0.3, -0.5, 0.8).normalize(), 2.5);
+        assert!((rotation_vector(&turn) - Vec3::new(0.3, -0.5, 0.8).normalize() * 2.5).norm() < 1e-12);
+    }
 
     #[test]
     fn chains_give_back_their_angles_and_a_projection_keeps_the_twist() {
