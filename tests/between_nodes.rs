@@ -14,7 +14,7 @@ fn path() -> PathBuf {
 /// The double pendulum raised in 1.5 s at the default N = 16, its shoulder limited to 60 N·m: the limit
 /// binds, and between the nodes the unrefined optimum goes 2.5 N·m (4 %) over it.
 fn limited(extra: &str) -> Task {
-    let text = format!("{}\n[constraints]\ntorque_limit = {{ shoulder = 60.0 }}\n{extra}\n", common::TASK);
+    let text = format!("{}{}\n[constraints]\ntorque_limit = {{ shoulder = 60.0 }}\n{extra}\n", common::TASK, common::FIXED_N);
     Task::parse(&text, &path()).unwrap()
 }
 
@@ -54,7 +54,7 @@ fn refinement_makes_a_torque_limit_hold_between_the_nodes() {
 
 #[test]
 fn where_the_check_holds_nothing_is_refined() {
-    let mut task = Task::parse(common::TASK, &path()).unwrap();
+    let mut task = Task::parse(&format!("{}{}", common::TASK, common::FIXED_N), &path()).unwrap();
     let planned = plan_of(&mut task);
     assert!(planned.converged());
     assert_eq!((planned.between_rounds, planned.check_nodes.limits.len()), (0, 0));

@@ -172,11 +172,10 @@ fn a_previous_trajectory_warm_starts_a_finer_plan() {
         .arg("examples/double_pendulum.toml")
         .current_dir(root()));
     assert_eq!(code, 0);
-    let task = double_pendulum_task(
-        &dir,
-        "fine.toml",
-        "[discretization]\ncontrol_points = 24\ninitial_guess = \"coarse/trajectory.csv\"",
-    );
+    let task = double_pendulum_task(&dir, "fine.toml", "");
+    let text = std::fs::read_to_string(&task).unwrap();
+    let fine = "control_points = 24\ninitial_guess = \"coarse/trajectory.csv\"\n#";
+    std::fs::write(&task, text.replacen("control_points = 16", fine, 1)).unwrap();
     let (code, _, stderr) = run(mintorque().args(["plan", "-q", "--no-plots", "--out"]).arg(dir.join("fine")).arg(&task));
     assert_eq!(code, 0, "{stderr}");
     let read = |p: &Path| -> serde_json::Value { serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap() };

@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{FIGURE, TASK};
+use common::{FIGURE, FIXED_N, TASK};
 use mintorque::model::figure;
 use mintorque::plan::task::Task;
 use std::path::PathBuf;
@@ -60,7 +60,7 @@ fn a_negative_or_non_finite_directional_limit_is_refused() {
 #[test]
 fn the_plan_keeps_the_limit_of_each_direction() {
     let peak = |section: &str| {
-        let mut task = Task::parse(&format!("{TASK}\n[constraints]\n{section}\n"), &path()).unwrap();
+        let mut task = Task::parse(&format!("{TASK}{FIXED_N}\n[constraints]\n{section}\n"), &path()).unwrap();
         let planned = task.plan(&mut |_| {}).unwrap();
         assert!(planned.converged(), "{section}: {}", planned.outcome.reason);
         let times: Vec<f64> = (0..=300).map(|k| 1.5 * k as f64 / 300.0).collect();

@@ -82,6 +82,7 @@ def test_plan_from_a_file_and_from_a_dict_agree():
         "model": {"urdf": os.path.join(ROOT, "models", "pendulum.urdf")},
         "motion": {"duration": 0.6052, "start": {"pivot": -70.0}, "goal": {"pivot": 70.0}},
         "environment": {"gravity": "earth"},
+        "discretization": {"control_points": 16},  # as the file fixes it (left out, N would be refined)
     }
     from_dict = mintorque.plan(task)
     assert from_dict.converged

@@ -88,18 +88,30 @@ struct PlanOutputs {
     trace: bool,
 }
 
-fn run_plan(
-    task_path: &Path,
-    out: &Path,
-    overrides: &Overrides,
-    warm_start: Option<&Path>,
-    outputs: PlanOutputs,
-) -> Result<bool> {
+/// Where a plan starts: the task's guess, a previous plan (`--warm-start`), or a plan to refine (`--refine-from`).
+enum Start {
+    Guess,
+    Warm(PathBuf),
+    Refine(PathBuf),
+}
+
+/// The task to plan, started as `from` says (`task_path` is required unless refining a plan).
+fn load_task(task_path: Option<&Path>, overrides: &Overrides, from: &Start) -> Result<Task> {
+    let required = || task_path.context("a task file is required");
+    Ok(match from {
+        Start::Guess => Task::load_with(required()?, overrides)?,
+        Start::Warm(dir) => {
+            let mut task = Task::load_with(required()?, overrides)?;
+            plan_dir::warm_start(&mut task, dir)?;
+            task
+        }
+        Start::Refine(dir) => plan_dir::refine_from(task_path, overrides, dir)?,
+    })
+}
+
+fn run_plan(task_path: Option<&Path>, out: &Path, overrides: &Overrides, from: &Start, outputs: PlanOutputs) -> Result<bool> {
     let PlanOutputs { quiet, no_plots, trace } = outputs;
-    let mut task = Task::load_with(task_path, overrides)?;
-    if let Some(dir) = warm_start {
-        plan_dir::warm_start(&mut task, dir)?;
-    }
+    let mut task = load_task(task_path, overrides, from)?;
     let mut trace = trace.then(Trace::new);
     let planned = solve(&mut task, quiet, trace.as_mut())?;
     let contents = PlanContents { trace, ..PlanContents::from_task(&task, &planned, no_plots)? };
@@ -121,6 +133,9 @@ fn run_plan(
         println!("results in {}", out.display());
     }
     eprint!("{}", report::singularity::warning_lines(&summary.near_singularities));
+    if let Some(verdict) = summary.discretization_verdict.as_ref().filter(|v| v.starts_with("NOT")) {
+        eprintln!("warning: the discretisation is {verdict}: more control points may lower the effort further");
+    }
     // The worst constraint at the nodes, in units, when it is violated there (the between-node misses are
     // in the reason).
     let between = matches!(planned.outcome.reason, mintorque::solve::StopReason::BetweenNodes(_));
@@ -220,7 +235,7 @@ fn run_dynamics(model: &Path, read: ModelArgs, states: Option<PathBuf>, gravity:
 
 fn run(cli: Cli) -> Result<ExitCode> {
     match cli.command {
-        Command::Plan { task, out, solver, control_points, starts, refine, warm_start, quiet, no_plots, trace } => {
+        Command::Plan { task, out, solver, control_points, starts, refine, warm_start, refine_from, quiet, no_plots, trace } => {
             let solver = solver.map(|s| match s {
                 SolverArg::Structured => SolverKind::Structured,
                 SolverArg::Newton => SolverKind::Newton,
@@ -228,7 +243,12 @@ fn run(cli: Cli) -> Result<ExitCode> {
             });
             let overrides = Overrides { solver, control_points, starts, refine };
             let outputs = PlanOutputs { quiet, no_plots, trace };
-            Ok(exit(run_plan(&task, &out, &overrides, warm_start.as_deref(), outputs)?))
+            let from = match (warm_start, refine_from) {
+                (Some(dir), _) => Start::Warm(dir),
+                (None, Some(dir)) => Start::Refine(dir),
+                (None, None) => Start::Guess,
+            };
+            Ok(exit(run_plan(task.as_deref(), &out, &overrides, &from, outputs)?))
         }
         Command::Sweep { sweep: file, out, keep_plans, quiet } => Ok(exit(sweep::run(&file, &out, keep_plans, quiet)?)),
         Command::Export { dir, format, out, fps, units, channels, angles, columns, joints, rate } => {

@@ -20,7 +20,7 @@ pub use between::{BetweenNodes, CheckNodes, NodeViolation, Tolerances};
 pub use guess::initial_x;
 pub use ik::close_loop;
 pub use multistart::{next_signed, MultiStart, StartReport};
-pub use refine::{last_change, plan_refined, Level, Refinement};
+pub use refine::{last_change, plan_refined, Level, Refinement, Settled};
 pub use run::{plan, plan_with_starts};
 pub use spec::{
     Balance, Collider, Collision, Contact, ContactKind, EndCondition, FrameGoal, InitialGuess, Objective, Obstacle,
@@ -92,6 +92,8 @@ pub struct Plan {
     pub best_start: usize,
     /// The levels of a refinement of N ([`plan_refined`]); empty for a plan at a fixed N.
     pub refinement: Vec<Level>,
+    /// How that refinement ended, and its settings (`None` for a plan at a fixed N).
+    pub refinement_settled: Option<(Settled, Refinement)>,
 }
 
 impl Plan {

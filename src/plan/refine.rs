@@ -41,6 +41,36 @@ pub struct Level {
     pub solve_seconds: f64,
 }
 
+/// How a refinement of N ended: the discretisation's verdict.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Settled {
+    /// The effort changed by less than the tolerance at the last level: N is converged.
+    Converged,
+    /// The next level would pass `max_control_points` with the effort still changing.
+    AtCap,
+    /// A finer level did not converge: the plan is the finest level that did.
+    FinerNotConverged,
+    /// The first level did not converge: nothing was refined.
+    FirstNotConverged,
+}
+
+impl Settled {
+    /// What the verdict means, for the terminal.
+    pub fn describe(self, refinement: &Refinement) -> String {
+        match self {
+            Settled::Converged => format!("converged (the effort changed by < {} %)", 100.0 * refinement.tolerance),
+            Settled::AtCap => format!(
+                "NOT converged: the next level would pass N = {} with the effort still changing by ≥ {} %",
+                refinement.max_control_points,
+                100.0 * refinement.tolerance
+            ),
+            Settled::FinerNotConverged => "NOT converged: the finer level's solve did not converge".into(),
+            Settled::FirstNotConverged => "not refined: the first level did not converge".into(),
+        }
+    }
+}
+
 /// Plans `spec` at its N (with `multi` starts), then refines as the module docs say. Returns the spec at the
 /// N of the plan kept (its other fields unchanged) and the plan, whose [`Plan::refinement`] lists the levels.
 pub fn plan_refined(
@@ -56,24 +86,32 @@ pub fn plan_refined(
     let mut best_spec = spec.clone();
     let mut levels = vec![level(spec.n_ctrl, &best)];
     let mut n = spec.n_ctrl;
+    let mut settled = if best.converged() { Settled::AtCap } else { Settled::FirstNotConverged };
     while best.converged() && 2 * (n - 3) + 3 <= refinement.max_control_points {
         n = 2 * (n - 3) + 3;
         let finer = finer_spec(&best_spec, &best, n)?;
         let left = settings.time_limit.map(|t| (t - started.elapsed().as_secs_f64()).max(0.0));
-        let planned = plan(&finer, solver, &Settings { time_limit: left, ..settings.clone() }, observer)?;
+        // A warm start's multipliers belong to the first level's problem: the finer one starts without them.
+        let finer_settings = Settings { time_limit: left, warm_start: None, initial_penalty: None, ..settings.clone() };
+        let planned = plan(&finer, solver, &finer_settings, observer)?;
         levels.push(level(n, &planned));
         if !planned.converged() {
+            settled = Settled::FinerNotConverged;
             break;
         }
         best = planned;
         best_spec = Spec { initial_guess: spec.initial_guess.clone(), ..finer };
         // Both of the last two levels converged here (the loop only goes on from a converged plan).
         if last_change(&levels).is_some_and(|change| change < refinement.tolerance) {
+            settled = Settled::Converged;
             break;
         }
     }
+    // The plan reports what the whole refinement took: every level's iterations and seconds.
     best.solve_seconds = started.elapsed().as_secs_f64();
+    best.outcome.iterations = levels.iter().map(|l| l.iterations).sum();
     best.refinement = levels;
+    best.refinement_settled = Some((settled, *refinement));
     Ok((best_spec, best))
 }
 

@@ -60,6 +60,7 @@ pub fn plan_with_starts(
         starts,
         best_start: best,
         refinement: vec![],
+        refinement_settled: None,
     })
 }
 

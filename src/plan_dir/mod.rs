@@ -20,7 +20,7 @@ mod warm;
 pub use atomic::{lock, Lock, WriteOptions};
 pub use files::PlanContents;
 pub use manifest::Manifest;
-pub use warm::warm_start;
+pub use warm::{refine_from, warm_start};
 
 use crate::model::{figure, Model};
 use crate::plan::task::Task;

@@ -1,10 +1,12 @@
 //! Warm starts from a plan directory: a task planned again from a previous plan of the same figure and N —
 //! its control points, contact forces and multipliers as they are — so that re-planning a converged plan,
-//! or a slightly changed task, starts at (or next to) its optimum.
+//! or a slightly changed task, starts at (or next to) its optimum. [`refine_from`] takes a plan on from its
+//! N: the same warm start, then the refinement of N (`plan::plan_refined`).
 
 use super::{load, Result};
 use crate::error::Error;
-use crate::plan::{task::Task, CheckNodes, InitialGuess, MultiStart, Transcription};
+use crate::plan::task::{Overrides, Task};
+use crate::plan::{CheckNodes, InitialGuess, MultiStart, Transcription};
 use crate::solve::Problem;
 use std::path::Path;
 
@@ -40,4 +42,17 @@ pub fn warm_start(task: &mut Task, dir: &Path) -> Result<()> {
     task.settings.warm_start = multipliers;
     task.multistart = MultiStart::single();
     Ok(())
+}
+
+/// The task of `--refine-from DIR`: `task_path` (default: the plan's own `task.resolved.toml`) at the plan's
+/// N, asked to refine, warm-started from the plan in `dir` — its first level converges at once (the plan's
+/// optimum), the finer levels start from it refitted exactly. `overrides` may not set N (the plan's is
+/// the first level).
+pub fn refine_from(task_path: Option<&Path>, overrides: &Overrides, dir: &Path) -> Result<Task> {
+    let record = load(dir)?.record;
+    let overrides = Overrides { control_points: Some(record.n_ctrl), refine: true, ..*overrides };
+    let resolved = dir.join("task.resolved.toml");
+    let mut task = Task::load_with(task_path.unwrap_or(&resolved), &overrides)?;
+    warm_start(&mut task, dir)?;
+    Ok(task)
 }

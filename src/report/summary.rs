@@ -55,6 +55,11 @@ pub struct Summary {
     pub refinement: Vec<crate::plan::Level>,
     /// The relative change of the effort at the last refinement: the discretisation's error estimate.
     pub effort_change_last_refinement: Option<f64>,
+    /// How the refinement of N ended ("converged", "at_cap", "finer_not_converged", "first_not_converged");
+    /// `None` when the task fixed N (no estimate of the discretisation's error).
+    pub discretization: Option<crate::plan::Settled>,
+    /// That verdict in words.
+    pub discretization_verdict: Option<String>,
     /// The joints whose coordinates come within [`super::singularity::WARNING_MARGIN_DEG`] of their
     /// singularity (lock), each at its closest approach; empty when none does.
     pub near_singularities: Vec<super::singularity::NearSingularity>,
@@ -241,6 +246,8 @@ impl Summary {
             best_start: plan.best_start,
             refinement: plan.refinement.clone(),
             effort_change_last_refinement: crate::plan::last_change(&plan.refinement),
+            discretization: plan.refinement_settled.map(|(settled, _)| settled),
+            discretization_verdict: plan.refinement_settled.map(|(settled, r)| settled.describe(&r)),
             near_singularities: super::singularity::near_singularities(model, samples.iter().map(|s| (s.t, s.q.as_slice()))),
         }
     }
@@ -266,14 +273,21 @@ pub fn text_table(s: &Summary) -> String {
             s.objective_terms.iter().map(|t| format!("{} × {} = {:.6e}", t.weight, t.formula, t.value)).collect();
         let _ = writeln!(out, "objective terms: {}", each.join(" + "));
     }
-    if s.refinement.len() > 1 {
+    if !s.refinement.is_empty() {
         let levels: Vec<String> = s
             .refinement
             .iter()
             .map(|l| format!("{} ({:.6e}{})", l.control_points, l.objective, if l.converged { "" } else { ", not converged" }))
             .collect();
         let change = s.effort_change_last_refinement.map_or("unknown".into(), |c| format!("{:.2} %", 100.0 * c));
-        let _ = writeln!(out, "control points refined: {}; effort change at the last refinement {change}", levels.join(" → "));
+        let verdict = s.discretization_verdict.as_deref().unwrap_or("");
+        let _ = writeln!(
+            out,
+            "control points refined: {}; effort change at the last refinement {change}; discretisation {verdict}",
+            levels.join(" → ")
+        );
+    } else {
+        let _ = writeln!(out, "control points: N = {} fixed by the task (discretisation error not estimated)", s.control_points);
     }
     if s.starts.len() > 1 {
         let each: Vec<String> = s

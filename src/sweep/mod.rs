@@ -95,6 +95,11 @@ impl Sweep {
 
     fn task_with(&self, fields: &[(&str, toml::Value)]) -> Result<Task> {
         let mut doc = self.base.clone();
+        // Every row at the base's N (16 when it says none): a row refines only if the base asks to.
+        if doc.get("discretization").and_then(|d| d.get("refine")).is_none() {
+            apply::set(&mut doc, "discretization.refine", toml::Value::Boolean(false))
+                .map_err(|m| Error::task(self.base_path.display().to_string(), "discretization", m))?;
+        }
         for (path, value) in fields {
             apply::set(&mut doc, path, value.clone()).map_err(|m| Error::task(self.base_path.display().to_string(), *path, m))?;
         }

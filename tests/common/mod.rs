@@ -160,6 +160,9 @@ joint = { name = "hinge", type = "revolute", axis = [0, 1, 0], origin = { xyz = 
 "#;
 
 /// A valid task on the double pendulum; the tests break or extend it.
+/// Appended to a task: N fixed at 16 (a task without it is refined, `discretization.control_points`).
+pub const FIXED_N: &str = "\n[discretization]\ncontrol_points = 16\n";
+
 pub const TASK: &str = r#"
 [model]
 urdf = "../models/double_pendulum.urdf"

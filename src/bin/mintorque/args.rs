@@ -14,26 +14,32 @@ pub(crate) struct Cli {
 pub(crate) enum Command {
     /// Plan the minimum-torque motion of a task file and write the results into a directory.
     Plan {
-        /// The task (TOML; see docs/task-file.md).
-        task: PathBuf,
+        /// The task (TOML; see docs/task-file.md). With --refine-from, default: that plan's task.resolved.toml.
+        #[arg(required_unless_present = "refine_from")]
+        task: Option<PathBuf>,
         /// Output directory (created if needed): trajectory.csv, summary.json, task.resolved.toml.
         #[arg(long, short)]
         out: PathBuf,
         /// Override the task's solver.
         #[arg(long, value_enum)]
         solver: Option<SolverArg>,
-        /// Override the number of B-spline control points per joint.
+        /// Fix the number of B-spline control points per joint (no refinement unless --refine).
         #[arg(long)]
         control_points: Option<usize>,
         /// Override the number of starting points solved in parallel (the best plan is kept).
         #[arg(long)]
         starts: Option<usize>,
-        /// Refine the number of control points until the effort changes by less than 0.5 %.
+        /// Refine the number of control points until the effort changes by less than 0.5 % (the default when
+        /// the task does not fix discretization.control_points).
         #[arg(long)]
         refine: bool,
         /// Start from the plan in this directory (same figure and N): its motion, forces and multipliers.
-        #[arg(long)]
+        #[arg(long, conflicts_with = "refine_from")]
         warm_start: Option<PathBuf>,
+        /// Refine the plan in this directory: start from it at its N (converged at once), then halve the knot
+        /// spans until the effort changes by less than 0.5 %.
+        #[arg(long, conflicts_with = "control_points")]
+        refine_from: Option<PathBuf>,
         /// No progress output.
         #[arg(long, short)]
         quiet: bool,

@@ -103,7 +103,7 @@ impl Task {
             ..Settings::default()
         };
         let multistart = MultiStart { starts: file.solver.starts, seed: file.solver.seed };
-        let refinement = file.discretization.refine.then(Refinement::default);
+        let refinement = file.discretization.refines().then(Refinement::default);
         Ok(Task {
             path: path.to_path_buf(),
             solver: file.solver.method,
@@ -117,7 +117,7 @@ impl Task {
         })
     }
 
-    /// Plans the task as its file says — the solver, the starts and, with `discretization.refine`, the
+    /// Plans the task as its file says — the solver, the starts and, unless the file fixes N, the
     /// refinement of N ([`crate::plan::plan_refined`]). Afterwards `spec` and `file` hold the N planned (and
     /// no longer ask to refine), so [`Task::resolved_file`] is the task as planned.
     pub fn plan(&mut self, observer: &mut dyn FnMut(&crate::solve::Progress)) -> Result<crate::plan::Plan> {
@@ -130,8 +130,8 @@ impl Task {
             }
             None => crate::plan::plan_with_starts(&self.spec, self.solver, &self.settings, &self.multistart, observer)?,
         };
-        self.file.discretization.control_points = self.spec.n_ctrl;
-        self.file.discretization.refine = false;
+        self.file.discretization.control_points = Some(self.spec.n_ctrl);
+        self.file.discretization.refine = Some(false);
         Ok(planned)
     }
 

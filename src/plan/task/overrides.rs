@@ -10,7 +10,7 @@ use crate::plan::SolverKind;
 pub struct Overrides {
     /// `solver.method`.
     pub solver: Option<SolverKind>,
-    /// `discretization.control_points`.
+    /// `discretization.control_points` (fixes N: no refinement unless `refine`).
     pub control_points: Option<usize>,
     /// `solver.starts`.
     pub starts: Option<usize>,
@@ -25,11 +25,13 @@ impl Overrides {
             file.solver.method = s;
         }
         if let Some(n) = self.control_points {
-            file.discretization.control_points = n;
+            file.discretization.control_points = Some(n);
         }
         if let Some(k) = self.starts {
             file.solver.starts = k;
         }
-        file.discretization.refine |= self.refine;
+        if self.refine {
+            file.discretization.refine = Some(true);
+        }
     }
 }

@@ -52,7 +52,7 @@ pub fn resolve(file: &TaskFile, base: &Path, origin: &str) -> Result<Spec> {
         start_condition,
         goal_condition,
         frame_goals,
-        n_ctrl: file.discretization.control_points,
+        n_ctrl: file.discretization.n(),
         nodes_per_span: file.discretization.nodes_per_span,
         objective,
         weights,

@@ -490,12 +490,14 @@ impl Default for ObjectiveSection {
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DiscretizationSection {
-    /// B-spline control points per joint, N (default 16; the first level when `refine`).
-    #[serde(default = "first_control_points")]
-    pub control_points: usize,
-    /// Refine N from `control_points` until the effort changes by < 0.5 % (`plan::plan_refined`).
-    #[serde(default)]
-    pub refine: bool,
+    /// B-spline control points per joint, N. Given, it fixes N (unless `refine = true`, when it is the first
+    /// level); left out, the planner chooses N: it starts at [`FIRST_CONTROL_POINTS`] and refines.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub control_points: Option<usize>,
+    /// Refine N until the effort changes by < 0.5 % (`plan::plan_refined`). Default: `true` when
+    /// `control_points` is left out (a converged discretisation), `false` when the task fixes N.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub refine: Option<bool>,
     /// Gauss–Legendre nodes per knot span (default 4).
     #[serde(default = "four")]
     pub nodes_per_span: usize,
@@ -506,9 +508,6 @@ pub struct DiscretizationSection {
 
 /// N when the task does not say.
 pub const FIRST_CONTROL_POINTS: usize = 16;
-fn first_control_points() -> usize {
-    FIRST_CONTROL_POINTS
-}
 fn four() -> usize {
     4
 }
@@ -518,7 +517,19 @@ fn linear() -> String {
 
 impl Default for DiscretizationSection {
     fn default() -> Self {
-        DiscretizationSection { control_points: FIRST_CONTROL_POINTS, refine: false, nodes_per_span: 4, initial_guess: linear() }
+        DiscretizationSection { control_points: None, refine: None, nodes_per_span: 4, initial_guess: linear() }
+    }
+}
+
+impl DiscretizationSection {
+    /// N, or the first level of the refinement: `control_points`, else [`FIRST_CONTROL_POINTS`].
+    pub fn n(&self) -> usize {
+        self.control_points.unwrap_or(FIRST_CONTROL_POINTS)
+    }
+
+    /// Whether N is refined: as `refine` says, else when the task does not fix N.
+    pub fn refines(&self) -> bool {
+        self.refine.unwrap_or(self.control_points.is_none())
     }
 }
 
