@@ -2,18 +2,14 @@
 //! (knot spans halved, warm-started) until the effort changes by < 0.5 %; a task that fixes N is planned at
 //! it; `--refine-from DIR` takes a plan on from its own N.
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
+mod common;
 
-fn mintorque() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_mintorque"))
-}
+use common::cli;
+use std::ffi::OsStr;
+use std::path::{Path, PathBuf};
 
 fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("mintorque-discretization-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    cli::scratch("discretization", name)
 }
 
 /// The double pendulum's task, its model path absolute, with its `control_points` line replaced by `n`.
@@ -27,14 +23,12 @@ fn double_pendulum(dir: &Path, n: &str) -> PathBuf {
 }
 
 fn plan(args: &[&str], task: Option<&Path>, out: &Path) -> (serde_json::Value, String) {
-    let mut cmd = mintorque();
-    cmd.args(["plan", "--no-plots", "--out"]).arg(out).args(args);
-    if let Some(task) = task {
-        cmd.arg(task);
-    }
-    let output = cmd.output().unwrap();
-    let stdout = String::from_utf8_lossy(&output.stdout).to_string();
-    assert_eq!(output.status.code(), Some(0), "{stdout}\n{}", String::from_utf8_lossy(&output.stderr));
+    let mut all: Vec<&OsStr> = ["plan", "--no-plots", "--out"].map(OsStr::new).to_vec();
+    all.push(out.as_os_str());
+    all.extend(args.iter().map(OsStr::new));
+    all.extend(task.map(Path::as_os_str));
+    let (code, stdout, stderr) = cli::run(&all);
+    assert_eq!(code, 0, "{stdout}\n{stderr}");
     (serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap(), stdout)
 }
 
@@ -86,13 +80,9 @@ fn refine_from_continues_a_plan_from_its_n() {
     assert_eq!(refined["discretization"], "converged", "{refined}");
     assert!(refined["objective"].as_f64().unwrap() < 0.95 * levels[0].1, "{levels:?}");
     // N is the plan's: --control-points with it is refused.
-    let output = mintorque()
-        .args(["plan", "--control-points", "20", "--refine-from"])
-        .arg(&coarse_dir)
-        .arg("--out")
-        .arg(dir.join("refused"))
-        .output()
-        .unwrap();
-    assert_eq!(output.status.code(), Some(1));
-    assert!(String::from_utf8_lossy(&output.stderr).contains("--control-points"));
+    let refused = dir.join("refused");
+    let args = ["plan", "--control-points", "20", "--refine-from"].map(OsStr::new);
+    let (code, _, stderr) = cli::run(&[&args[..], &[coarse_dir.as_os_str(), OsStr::new("--out"), refused.as_os_str()]].concat());
+    assert_eq!(code, 1, "{stderr}");
+    assert!(stderr.contains("--control-points"), "{stderr}");
 }
