@@ -16,5 +16,5 @@ log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 status=0
 blender -b --factory-startup --python-exit-code 1 --python "$(dirname "$0")/blender_check.py" -- "$@" >"$log" 2>&1 || status=$?
-grep -E '^(Blender .*Python|ok|FAIL|all checks|[0-9]+ check)|Error' "$log" || true
+grep -E '^(Blender .*Python|ok|FAIL|all checks|[0-9]+ check|     )|Error' "$log" || true
 exit "$status"

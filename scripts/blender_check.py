@@ -55,6 +55,44 @@ def armatures():
     return [o for o in bpy.context.scene.objects if o.type == 'ARMATURE']
 
 
+def bvh_rest_positions(tokens):
+    """Each ROOT/JOINT's position at rest, its OFFSETs summed down the hierarchy (the file's unit, Y up)."""
+    positions, stack, pending, k = {}, [], None, 0
+    while k < len(tokens):
+        word = tokens[k]
+        if word in ('ROOT', 'JOINT'):
+            pending = tokens[k + 1]
+        elif word == 'End':
+            pending = None
+        elif word == '{':
+            stack.append(pending)
+        elif word == '}':
+            stack.pop()
+        elif word == 'OFFSET':
+            offset = [float(v) for v in tokens[k + 1:k + 4]]
+            parents = [n for n in stack[:-1] if n is not None]
+            base = positions[parents[-1]] if parents else [0.0, 0.0, 0.0]
+            if stack[-1] is not None:
+                positions[stack[-1]] = [b + o for b, o in zip(base, offset)]
+        elif word == 'MOTION':
+            break
+        k += 1
+    return positions
+
+
+def check_bone_heads(path, arm, positions, scale):
+    """Every bone's rest head where the file puts its joint: BVH (x, y, z) is Blender's (x, −z, y) under the
+    importer's default axes (−Z forward, Y up), times the import scale."""
+    worst, where = 0.0, None
+    for name, (x, y, z) in positions.items():
+        head = arm.matrix_world @ arm.data.bones[name].head_local
+        miss = max(abs(head[0] - x * scale), abs(head[1] + z * scale), abs(head[2] - y * scale))
+        if miss > worst:
+            worst, where = miss, name
+    print(f"     {path}: worst bone head off its joint by {worst:.2e} m ({where})")
+    check(f"{path}: bone heads at the joints (1e-4 m)", worst <= 1e-4, True)
+
+
 def check_bvh(path):
     text = open(path).read().split()
     joints = sum(1 for w in text if w in ('ROOT', 'JOINT'))
@@ -69,6 +107,7 @@ def check_bvh(path):
     check(f"{path}: one armature", len(arms), 1)
     if arms:
         check(f"{path}: bones", len(arms[0].data.bones), joints)
+        check_bone_heads(path, arms[0], bvh_rest_positions(text), 0.01)
         action = arms[0].animation_data.action if arms[0].animation_data else None
         keys = [k.co[0] for c in action.fcurves for k in c.keyframe_points] if action else []
         # Frame k of the file (1-based) is keyed at scene frame k.

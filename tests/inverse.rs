@@ -282,6 +282,9 @@ fn inverse_dynamics_of_a_planned_motion_gives_back_its_torques() {
     for f in ["inverse_dynamics.csv", "q_filtered.mot", "joint_loads.csv", "tau.svg", "tau.png", "manifest.json"] {
         assert!(out.join(f).is_file(), "{f} missing");
     }
+    // The torques are the net ones (passive included) by default, and the torque plot says so.
+    let tau = std::fs::read_to_string(out.join("tau.svg")).unwrap();
+    assert!(tau.contains("Net joint torque") && !tau.contains("Active joint torque"), "tau.svg's title");
     let summary: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     assert_eq!(summary["filter"], serde_json::Value::Null);
     assert_eq!(summary["samples"].as_u64(), Some(planned.len() as u64));

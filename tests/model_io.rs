@@ -154,6 +154,9 @@ fn example_figure_file_loads_with_its_anatomical_shoulder_expanded() {
     }
     let hand = &model.frames[model.frame_index("hand").unwrap()];
     assert!((hand.placement.translation.z - (-0.2785 - 0.08)).abs() < 1e-15);
+    // The palm is a part welded to the forearm (a BVH joint of its own); the hand a mere point.
+    assert_eq!(model.frames[model.frame_index("palm").unwrap()].welded_to.as_deref(), Some("forearm"));
+    assert_eq!(hand.welded_to, None);
     assert!((model.total_mass() - (22.10549 + 2.48 + 1.42 + 0.35)).abs() < 1e-12);
     // A cylinder along z gives Ixx = Iyy = m(3r² + L²)/12, Izz = m r²/2 about its centre.
     let i = &model.bodies[3].inertia;
@@ -167,6 +170,10 @@ fn example_figure_file_loads_with_its_anatomical_shoulder_expanded() {
     let again = figure::parse(&text, "example exported").unwrap_or_else(|e| panic!("{e}\n{text}"));
     assert_eq!(again.joints[1].group.as_deref(), Some("shoulder"));
     assert_same_dynamics(&model, &again, "example → figure file");
+    assert_eq!(again.frames, model.frames, "figure-file round trip: frames, welded parts included");
+    let unknown = text.replace("welded_to = \"forearm\"", "welded_to = \"shin\"");
+    let err = figure::parse(&unknown, "bad.figure.toml").expect_err("a part welded to nothing").to_string();
+    assert!(err.contains("welded_to") && err.contains("shin"), "{err}");
     assert_eq!(again.joints, model.joints, "figure-file round trip: joints (limits, springs, groups) exactly");
     let urdf_text = urdf_export::to_urdf(&model);
     let again = urdf::parse(&urdf_text, "example exported").unwrap_or_else(|e| panic!("{e}\n{urdf_text}"));

@@ -543,6 +543,14 @@ fn bvh_chain(model: &Model, name: &str, is_root: bool) -> Vec<usize> {
     joints_named(model, name)
 }
 
+/// The model frame a BVH joint stands for when it is a welded part (no joint or group of its name).
+fn welded_part(model: &Model, name: &str, is_root: bool) -> Option<usize> {
+    if is_root || !joints_named(model, name).is_empty() {
+        return None;
+    }
+    model.frames.iter().position(|f| f.name == name && f.welded_to.is_some())
+}
+
 /// World placements of the BVH joints at frame `f` (the parsed file's `values[f]`) by BVH's own forward
 /// kinematics: `W = W_parent · Trans(position channels, else OFFSET) · Π Rot(rotation channels)`, in the
 /// file's axes and unit. A position channel holds that coordinate in full; missing axes keep the OFFSET's.
@@ -596,11 +604,14 @@ fn assert_bvh_matches_the_model(
         let world = body_placements(model, &q_at(k));
         for (n, joint) in parsed["joints"].as_array().unwrap().iter().enumerate() {
             let name = joint["name"].as_str().unwrap();
-            let chain = bvh_chain(model, name, n == 0);
             let got = &bvh_world[name];
+            // A welded part sits at its frame and turns with its body.
+            let part = welded_part(model, name, n == 0);
+            let chain = if part.is_some() { vec![] } else { bvh_chain(model, name, n == 0) };
             // The joints of a chain share one origin but for its slides: the head is its last body's origin.
-            let last = chain.last().copied().unwrap_or(0);
-            let want = c * world[last].translation * scale;
+            let last = part.map_or(chain.last().copied().unwrap_or(0), |f| model.frames[f].body);
+            let at = part.map_or(world[last], |f| world[last].compose(&model.frames[f].placement));
+            let want = c * at.translation * scale;
             assert!((got.translation - want).norm() < 1e-4 * scale, "{tag}: {name} at frame {k}: {} vs {want}", got.translation);
             let turn = c * world[last].rotation * rest[last].rotation.transpose() * c.transpose();
             assert!((got.rotation - turn).norm() < 1e-5, "{tag}: {name}'s rotation at frame {k}");
@@ -630,7 +641,7 @@ fn bvh_of_the_sagittal_human_holds_the_joint_angles_themselves() {
     assert!(strings(&joints[0]["channels"]).is_empty());
     // Every joint turns about the model's ±y, which is BVH's ∓z: the Zrotation channel is ∓q in degrees.
     let rec = record(&model, &grid(1.0, 50), swing);
-    for joint in &joints[1..] {
+    for joint in joints[1..].iter().filter(|j| !strings(&j["channels"]).is_empty()) {
         let i = model.dof_index(joint["name"].as_str().unwrap()).unwrap();
         let sign = -model.joints[i + 1].axis.y;
         assert_eq!(strings(&joint["channels"])[0], "Zrotation");
@@ -638,6 +649,39 @@ fn bvh_of_the_sagittal_human_holds_the_joint_angles_themselves() {
             assert_close(floats(values)[0], sign * rec.samples[*k].q[i].to_degrees(), 1e-5, "joint angle");
         }
     }
+}
+
+/// The BVH joint `name`'s height above the floor at rest (cm): the sum of its and its ancestors' OFFSETs' y.
+fn rest_height(parsed: &serde_json::Value, name: &str) -> f64 {
+    let joints = parsed["joints"].as_array().unwrap();
+    let joint = joints.iter().find(|j| j["name"] == name).unwrap_or_else(|| panic!("no BVH joint {name}"));
+    let up = joint["parent"].as_str().map_or(0.0, |p| rest_height(parsed, p));
+    up + floats(&joint["offset"])[1]
+}
+
+#[test]
+fn bvh_of_the_sagittal_human_carries_its_spine_neck_and_head() {
+    let params = HumanParams { stature_m: 1.70, ..HumanParams::default() };
+    let model = human::build(Structure::Sagittal, params).unwrap();
+    let parsed = check_bvh_round_trip(&model, "bvh-head");
+    // Upper torso, neck and head hang from the lumbar joint in a chain, still (no channels).
+    for (name, parent) in [("upper_torso", "lumbar"), ("neck", "upper_torso"), ("head", "neck")] {
+        let joint = parsed["joints"].as_array().unwrap().iter().find(|j| j["name"] == name);
+        let joint = joint.unwrap_or_else(|| panic!("no BVH joint {name}"));
+        assert_eq!(joint["parent"], parent);
+        assert!(strings(&joint["channels"]).is_empty(), "{name} has channels");
+    }
+    // Table I scaled to 1.70 m: lower, middle and upper torso and the neck, 12.16 + 15.13 + 27.12 + 9 cm
+    // at 1.83 m, from the hip joint to the base of the skull.
+    let above_hips = rest_height(&parsed, "head") - rest_height(&parsed, "hip");
+    assert_close(above_hips, 63.41 * 1.70 / 1.83, 1e-3, "head joint above the hips (cm)");
+    // The head's End Site is the vertex: the skeleton is as tall as the figure.
+    let (_, text) = bvh_read_back(&model, &record(&model, &grid(1.0, 50), swing), &Options::default(), "bvh-head", &[0]);
+    let end_site = &text[text.find("JOINT head").unwrap()..];
+    let end_site = &end_site[end_site.find("End Site").unwrap()..];
+    let offset = end_site.lines().find_map(|l| l.trim().strip_prefix("OFFSET")).unwrap();
+    let end: Vec<f64> = offset.split_whitespace().map(|v| v.parse().unwrap()).collect();
+    assert_close(rest_height(&parsed, "head") + end[1], 170.0, 1e-3, "top of the head (cm)");
 }
 
 #[test]
@@ -683,7 +727,8 @@ fn bvh_of_the_whole_body_has_every_body_to_the_head_and_hands_and_its_forward_ki
         let parsed = check_bvh_round_trip(&model, tag);
         let names: Vec<&str> = parsed["joints"].as_array().unwrap().iter().map(|j| j["name"].as_str().unwrap()).collect();
         let drawn = model.bodies.iter().filter(|b| b.inertia.mass > 0.0 || !b.shapes.is_empty()).count();
-        assert_eq!(names.len(), drawn, "{tag}: one BVH joint per body with mass or a drawing: {names:?}");
+        let parts = names.iter().enumerate().filter(|&(n, name)| welded_part(&model, name, n == 0).is_some()).count();
+        assert_eq!(names.len() - parts, drawn, "{tag}: one BVH joint per body with mass or a drawing: {names:?}");
         if tag != "bvh-hanging" {
             for part in ["lumbar", "thoracic", "neck", "l_wrist", "r_wrist", "l_shoulder"] {
                 assert!(names.contains(&part), "{tag}: {part} missing from {names:?}");

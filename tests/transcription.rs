@@ -31,11 +31,13 @@ fn random_spec(seed: u64, n: usize, zero_end_velocity: bool) -> Spec {
         name: "hand".into(),
         body: hand,
         placement: Transform::from_translation(Vec3::new(0.1, 0.2, -0.3)),
+        welded_to: None,
     });
     model.frames.push(Frame {
         name: "grip".into(),
         body: mid,
         placement: Transform::from_translation(Vec3::new(-0.2, 0.0, 0.1)),
+        welded_to: None,
     });
     let (hand_f, grip_f) = (model.frames.len() - 2, model.frames.len() - 1);
     // Solids: a capsule on every body (kept off a floor and a bar below, and the last body off the first).

@@ -149,7 +149,7 @@ fn mapping(model: &Model, rest: &[crate::spatial::Transform], segments: &[Segmen
         axes: of(JointKind::Revolute).map(axis).collect(),
         slides: of(JointKind::Prismatic).map(|i| i - 1).collect(),
         slide_axes: of(JointKind::Prismatic).map(axis).collect(),
-        offset: rest_offset(rest, segments, s),
+        offset: rest_offset(segments, s),
     }
 }
 

@@ -173,7 +173,11 @@ pub fn render(
     text.push('\n');
     files.insert("summary.json".to_string(), text.into_bytes());
     if !no_plots {
-        files.extend(plots::plots_labelled(model, r, None, "inverse dynamics")?);
+        let torque = match inverse.settings.forces {
+            Forces::Net => "Net joint torque (passive springs and dampers included)",
+            Forces::Actuator => "Actuator joint torque (passive springs and dampers subtracted)",
+        };
+        files.extend(plots::plots_labelled(model, r, None, plots::Labels { curve: "inverse dynamics", torque })?);
         files.extend(ergonomics::plots::plots(chain, chain_record, Some(series), &summary.ergonomics)?);
     }
     Ok(files)

@@ -50,6 +50,7 @@ impl Model {
                     name: f.name.clone(),
                     body: new_index[f.body],
                     placement: in_body[f.body].compose(&f.placement),
+                    welded_to: f.welded_to.clone(),
                 });
             }
         }

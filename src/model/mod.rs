@@ -241,6 +241,11 @@ pub struct Frame {
     pub body: usize,
     /// The frame in the body's frame.
     pub placement: Transform,
+    /// `Some(name)` when the frame is the origin of a rigid part welded onto the body (a fixed joint's
+    /// link, a WeldJoint's body, a segment of a built-in human's lumped body), hanging from the body or
+    /// the part (frame) named; `None` for a mere point (a marker, a hand, a site). Exports that draw a
+    /// skeleton (BVH) draw the parts as joints of their own.
+    pub welded_to: Option<String>,
 }
 
 /// An articulated figure: a tree of bodies connected by one-degree-of-freedom joints, in topological order
@@ -279,7 +284,7 @@ impl Model {
                 group: None,
             }],
             bodies: vec![Body { name: root_name.clone(), inertia: Inertia::ZERO, shapes: vec![] }],
-            frames: vec![Frame { name: root_name, body: 0, placement: Transform::IDENTITY }],
+            frames: vec![Frame { name: root_name, body: 0, placement: Transform::IDENTITY, welded_to: None }],
             gravity: Vec3::new(0.0, 0.0, -9.81),
             collision: Default::default(),
         }
@@ -289,7 +294,7 @@ impl Model {
     /// body's name. Callers must add parents before children (validated by [`Model::validate`]).
     pub fn add_body(&mut self, joint: Joint, body: Body) -> usize {
         let i = self.bodies.len();
-        self.frames.push(Frame { name: body.name.clone(), body: i, placement: Transform::IDENTITY });
+        self.frames.push(Frame { name: body.name.clone(), body: i, placement: Transform::IDENTITY, welded_to: None });
         self.joints.push(joint);
         self.bodies.push(body);
         i

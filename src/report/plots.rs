@@ -102,19 +102,31 @@ impl Quantity {
 /// `contact_forces`, each as `.svg` and `.png`. `guess` holds the initial guess sampled like the plan
 /// (its curves are drawn dashed); pass `None` to leave it out.
 pub fn plots(model: &Model, record: &PlanRecord, guess: Option<&[SampleRecord]>) -> Result<Vec<(String, Vec<u8>)>> {
-    plots_labelled(model, record, guess, "planned")
+    plots_labelled(model, record, guess, PLAN_LABELS)
 }
 
-/// [`plots`] with the motion's curves called `label` in the legend (`"planned"` for a plan, `"inverse
-/// dynamics"` for a recorded motion).
+/// What the motion's curves are called.
+#[derive(Clone, Copy, Debug)]
+pub struct Labels<'a> {
+    /// The motion's curves in the legend.
+    pub curve: &'a str,
+    /// The torque plot's title (before the model's name).
+    pub torque: &'a str,
+}
+
+/// A plan's: its torques are the active ones (the passive springs' and dampers' not included).
+pub const PLAN_LABELS: Labels<'static> = Labels { curve: "planned", torque: "Active joint torque" };
+
+/// [`plots`] with the motion's curves and torques called as `labels` say (`"inverse dynamics"` and its
+/// net or actuator torque for a recorded motion).
 pub fn plots_labelled(
     model: &Model,
     record: &PlanRecord,
     guess: Option<&[SampleRecord]>,
-    label: &str,
+    labels: Labels,
 ) -> Result<Vec<(String, Vec<u8>)>> {
     let mut files = Vec::new();
-    for (name, svg) in svgs(model, record, guess, label)? {
+    for (name, svg) in svgs(model, record, guess, labels)? {
         let png = super::render::svg_to_png(&svg, PNG_SCALE, "plots")?;
         let stem = name.trim_end_matches(".svg").to_string();
         files.push((name, svg.into_bytes()));
@@ -125,10 +137,10 @@ pub fn plots_labelled(
 
 /// The SVG plots alone, as `(file name, SVG text)`.
 pub fn plot_svgs(model: &Model, record: &PlanRecord, guess: Option<&[SampleRecord]>) -> Result<Vec<(String, String)>> {
-    svgs(model, record, guess, "planned")
+    svgs(model, record, guess, PLAN_LABELS)
 }
 
-fn svgs(model: &Model, record: &PlanRecord, guess: Option<&[SampleRecord]>, label: &str) -> Result<Vec<(String, String)>> {
+fn svgs(model: &Model, record: &PlanRecord, guess: Option<&[SampleRecord]>, labels: Labels) -> Result<Vec<(String, String)>> {
     super::check_samples(model, record)?;
     if let Some(g) = guess {
         check_guess(model, g)?;
@@ -139,7 +151,7 @@ fn svgs(model: &Model, record: &PlanRecord, guess: Option<&[SampleRecord]>, labe
     let mut files = Vec::new();
     if model.nv() > 0 {
         for quantity in Quantity::ALL {
-            files.push((format!("{}.svg", quantity.file_stem()), joint_plot(model, record, guess, quantity, label)?));
+            files.push((format!("{}.svg", quantity.file_stem()), joint_plot(model, record, guess, quantity, labels)?));
         }
     }
     if !record.contacts.is_empty() {
@@ -229,11 +241,12 @@ fn joint_plot(
     record: &PlanRecord,
     guess: Option<&[SampleRecord]>,
     quantity: Quantity,
-    label: &str,
+    labels: Labels,
 ) -> Result<String> {
     let panels: Vec<JointPanel> = (0..model.nv()).map(|i| JointPanel::new(model, record, guess, quantity, i)).collect();
-    let title = format!("{} — {}", quantity.title(), record.model_name);
-    panels_svg(&title, panels.len(), &joint_legend(&panels, label), |k, area| panels[k].draw(area, time_range(record)))
+    let name = if quantity == Quantity::Torque { labels.torque } else { quantity.title() };
+    let title = format!("{name} — {}", record.model_name);
+    panels_svg(&title, panels.len(), &joint_legend(&panels, labels.curve), |k, area| panels[k].draw(area, time_range(record)))
 }
 
 /// A canvas of `count` panels (see [`grid`]) under `title` and the legend strip of `entries`, as SVG text;

@@ -38,6 +38,9 @@ pub fn to_toml(model: &Model) -> String {
         if f.placement != Transform::IDENTITY {
             let _ = writeln!(out, "origin = {}", origin(&f.placement));
         }
+        if let Some(welded_to) = &f.welded_to {
+            let _ = writeln!(out, "welded_to = {}", quote(welded_to));
+        }
     }
     out
 }

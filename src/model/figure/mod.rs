@@ -224,7 +224,8 @@ impl<'d, 'a> Builder<'d, 'a> {
         let target = &mut self.model.bodies[onto];
         target.inertia = target.inertia.merged(&body.inertia.transformed(&placement));
         target.shapes.extend(body.shapes.iter().map(|s| s.transformed(&placement)));
-        self.model.frames.push(Frame { name: body.name, body: onto, placement });
+        let welded_to = self.raw.body[b].parent.clone();
+        self.model.frames.push(Frame { name: body.name, body: onto, placement, welded_to });
         self.frame_paths.push(format!("body.{b}"));
         self.placed.insert(self.raw.body[b].name.as_str(), (onto, placement));
         Ok(())
@@ -357,7 +358,17 @@ impl<'d, 'a> Builder<'d, 'a> {
         };
         let origin = f.origin.transform();
         validate::check_placement(&origin).map_err(|m| self.err(&format!("{path}.origin"), m))?;
-        self.model.frames.push(Frame { name: f.name.clone(), body, placement: in_body.compose(&origin) });
+        if let Some(to) = &f.welded_to {
+            if !self.placed.contains_key(to.as_str()) && self.model.frame_index(to).is_none() {
+                return Err(self.err(&format!("{path}.welded_to"), format!("unknown body or earlier frame \"{to}\"")));
+            }
+        }
+        self.model.frames.push(Frame {
+            name: f.name.clone(),
+            body,
+            placement: in_body.compose(&origin),
+            welded_to: f.welded_to.clone(),
+        });
         self.frame_paths.push(path);
         Ok(())
     }

@@ -160,6 +160,9 @@ pub(super) struct RawFrame {
     pub(super) body: String,
     #[serde(default)]
     pub(super) origin: RawOrigin,
+    /// The body or part (an earlier frame) this frame's rigid part hangs from; absent for a point.
+    #[serde(default)]
+    pub(super) welded_to: Option<String>,
 }
 
 impl RawOrigin {

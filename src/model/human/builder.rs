@@ -38,6 +38,9 @@ pub(super) fn pitch(name: &'static str, dof: Dof, way: Way, z: f64) -> JointSpec
     JointSpec { name, dofs: vec![("", dof)], side: Side::Both, way, at: Vec3::new(0.0, 0.0, z) }
 }
 
+/// A welded part's frame: its name, anchor (standing coordinates) and the body or part it hangs from.
+pub(super) type PartFrame = (String, Vec3, String);
+
 /// Builds a model whose body frames are all world-aligned in the standing zero pose, so every joint
 /// placement is a pure translation between joint centres given in standing coordinates.
 pub(super) struct Builder<'a> {
@@ -58,17 +61,20 @@ impl<'a> Builder<'a> {
         b
     }
 
-    /// The body made of `parts`, in a frame at `origin`, and the frames of its parts named otherwise.
-    pub(super) fn body(&self, name: &str, origin: Vec3, parts: Vec<Part>) -> (Body, Vec<(String, Vec3)>) {
+    /// The body made of `parts`, in a frame at `origin`, and the frames of its parts named otherwise, each
+    /// welded to the part before it (the first to the body): `(name, anchor, welded_to)`.
+    pub(super) fn body(&self, name: &str, origin: Vec3, parts: Vec<Part>) -> (Body, Vec<PartFrame>) {
         let mut inertia = Inertia::ZERO;
         let mut shapes = Vec::new();
         let mut frames = Vec::new();
+        let mut previous = name.to_string();
         for part in parts {
             inertia = inertia.merged(&part.inertia);
             shapes.extend(part.shapes.iter().map(|s| shifted(s, -origin)));
             if part.name != name {
-                frames.push((part.name, part.anchor));
+                frames.push((part.name.clone(), part.anchor, previous));
             }
+            previous = part.name;
         }
         if inertia.mass > 0.0 {
             inertia.com -= origin;
@@ -118,9 +124,10 @@ impl<'a> Builder<'a> {
         (label, axis, limits, passive)
     }
 
-    pub(super) fn add_frames(&mut self, body: usize, frames: Vec<(String, Vec3)>) {
-        for (name, point) in frames {
+    pub(super) fn add_frames(&mut self, body: usize, frames: Vec<PartFrame>) {
+        for (name, point, welded_to) in frames {
             self.frame(&name, body, point);
+            self.model.frames.last_mut().expect("just added").welded_to = Some(welded_to);
         }
     }
 
@@ -130,6 +137,7 @@ impl<'a> Builder<'a> {
             name: name.to_string(),
             body,
             placement: Transform::from_translation(point - self.origins[body]),
+            welded_to: None,
         });
     }
 

@@ -132,7 +132,7 @@ impl Cx<'_, '_> {
             model.bodies[parent.body].inertia = merged;
             let shapes = self.body_shapes(node, class, &what, &frame)?;
             model.bodies[parent.body].shapes.extend(shapes);
-            model.frames.push(Frame { name, body: parent.body, placement: frame });
+            model.frames.push(Frame { name, body: parent.body, placement: frame, welded_to: None });
             lines.frame.push(self.line(node));
             Place { body: parent.body, frame }
         } else {
@@ -217,7 +217,12 @@ impl Cx<'_, '_> {
                 None => self.placement(&e)?,
             };
             lines.sites.push(model.frames.len());
-            model.frames.push(Frame { name: name.to_string(), body: place.body, placement: place.frame.compose(&local) });
+            model.frames.push(Frame {
+                name: name.to_string(),
+                body: place.body,
+                placement: place.frame.compose(&local),
+                welded_to: None,
+            });
             lines.frame.push(self.line(s));
         }
         Ok(())

@@ -58,7 +58,8 @@ pub(super) fn build(parsed: Parsed, origin: &str) -> Result<(Model, Coordinates,
         let merged = model.bodies[body].inertia.merged(&child.inertia.transformed(&in_body));
         model.bodies[body].inertia = merged;
         if model.bodies[body].name != child.name {
-            model.frames.push(Frame { name: child.name.clone(), body, placement: in_body });
+            let welded_to = Some(bodies[j.parent.0].name.clone());
+            model.frames.push(Frame { name: child.name.clone(), body, placement: in_body, welded_to });
         } else if in_body != Transform::IDENTITY {
             ignored.push(format!(
                 "body \"{}\": its frame here is its joint's child frame (the body's own frame sits at {:?} m in it)",
@@ -81,6 +82,7 @@ pub(super) fn build(parsed: Parsed, origin: &str) -> Result<(Model, Coordinates,
             name: m.name.clone(),
             body,
             placement: in_body.compose(&Transform::from_translation(m.location)),
+            welded_to: None,
         });
     }
     for spring in &springs {

@@ -152,7 +152,7 @@ pub fn parse_with(text: &str, origin: &str, options: Options) -> Result<Model> {
                     model.bodies[body].inertia = merged;
                     model.weld_collision(body, l.collision.as_deref(), &l.shapes, &placement);
                     model.bodies[body].shapes.extend(l.shapes.iter().map(|s| s.transformed(&placement)));
-                    model.frames.push(Frame { name: l.name.clone(), body, placement });
+                    model.frames.push(Frame { name: l.name.clone(), body, placement, welded_to: Some(links[link].name.clone()) });
                     lines.frame.push(l.line);
                     stack.push((child, body, placement));
                 }

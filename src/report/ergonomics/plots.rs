@@ -31,8 +31,10 @@ pub fn plots(model: &Model, record: &PlanRecord, series: Option<&LoadSeries>, e:
             ("joint_forces", "Joint force on the child body", "force (N)", false),
             ("joint_moments", "Joint moment on the child body", "moment (N·m)", true),
         ] {
-            let panels = load_panels(model, record, series, unit, moment);
-            svgs.push((stem, lines_svg(&format!("{title} (child-body axes) — {}", record.model_name), record, &panels)?));
+            let (axes, note) = drawn_axes(model, series, moment);
+            let panels = load_panels(model, record, series, unit, moment, &axes);
+            let title = format!("{title} (child-body axes{note}) — {}", record.model_name);
+            svgs.push((stem, lines_svg(&title, record, &panels)?));
         }
     }
     if let Some(b) = e.low_back.as_ref().filter(|b| !b.samples.is_empty()) {
@@ -85,8 +87,31 @@ pub fn plots(model: &Model, record: &PlanRecord, series: Option<&LoadSeries>, e:
     Ok(files)
 }
 
-/// A panel per joint with the x, y, z components of its force (or moment).
-fn load_panels(model: &Model, record: &PlanRecord, series: &LoadSeries, unit: &'static str, moment: bool) -> Vec<Panel> {
+/// The components (0, 1, 2 for x, y, z) worth drawing: those not zero at every joint and sample (a planar
+/// figure's out-of-plane ones would lie hidden under each other on the zero line), all when every one is;
+/// and a title note naming the left-out ones.
+fn drawn_axes(model: &Model, series: &LoadSeries, moment: bool) -> (Vec<usize>, String) {
+    let value = |l: &crate::dynamics::joint_loads::JointLoad, k: usize| if moment { l.moment[k] } else { l.force[k] };
+    let peak = |k: usize| series.iter().flat_map(|s| s.iter().take(model.nv())).map(|l| value(l, k).abs()).fold(0.0, f64::max);
+    let peaks = [peak(0), peak(1), peak(2)];
+    let largest = peaks.iter().copied().fold(0.0, f64::max);
+    let zero: Vec<usize> = (0..3).filter(|&k| peaks[k] <= 1e-9 * largest).collect();
+    if zero.is_empty() || zero.len() == 3 {
+        return (vec![0, 1, 2], String::new());
+    }
+    let names: Vec<String> = zero.iter().map(|&k| format!("{}{}", if moment { "M" } else { "F" }, ["x", "y", "z"][k])).collect();
+    ((0..3).filter(|k| !zero.contains(k)).collect(), format!("; {} zero throughout", names.join(", ")))
+}
+
+/// A panel per joint with the `axes` components of its force (or moment).
+fn load_panels(
+    model: &Model,
+    record: &PlanRecord,
+    series: &LoadSeries,
+    unit: &'static str,
+    moment: bool,
+    axes: &[usize],
+) -> Vec<Panel> {
     (0..model.nv())
         .map(|i| {
             let component = |axis: usize| -> Vec<(f64, f64)> {
@@ -101,7 +126,7 @@ fn load_panels(model: &Model, record: &PlanRecord, series: &LoadSeries, unit: &'
             Panel {
                 caption: format!("{} ({})", model.joints[i + 1].name, if moment { "N·m" } else { "N" }),
                 axis: unit,
-                curves: ["x", "y", "z"].iter().enumerate().map(|(k, a)| (format!("{prefix}{a}"), component(k))).collect(),
+                curves: axes.iter().map(|&k| (format!("{prefix}{}", ["x", "y", "z"][k]), component(k))).collect(),
                 levels: vec![],
             }
         })
@@ -133,4 +158,27 @@ fn lines_svg(title: &str, record: &PlanRecord, panels: &[Panel]) -> Result<Strin
 /// The `k`-th reference level's line: the first pale and thin, later ones darker and thicker.
 fn level_entry(label: &str, k: usize) -> Entry {
     Entry { opacity: if k == 0 { 0.6 } else { 1.0 }, ..Entry::line(label, LIMIT, 1 + k as u32) }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::dynamics::joint_loads::JointLoad;
+    use crate::model::human::{build, HumanParams, Structure};
+    use crate::spatial::Vec3;
+
+    fn series(nv: usize, moment: Vec3) -> LoadSeries {
+        vec![vec![JointLoad { force: Vec3::zeros(), moment }; nv]; 3]
+    }
+
+    #[test]
+    fn components_zero_throughout_are_left_out_and_named() {
+        let model = build(Structure::Sagittal, HumanParams::default()).unwrap();
+        let nv = model.nv();
+        let (axes, note) = drawn_axes(&model, &series(nv, Vec3::new(0.0, 12.0, 1e-12)), true);
+        assert_eq!((axes, note.as_str()), (vec![1], "; Mx, Mz zero throughout"));
+        assert_eq!(drawn_axes(&model, &series(nv, Vec3::new(0.1, 12.0, -3.0)), true), (vec![0, 1, 2], String::new()));
+        // No load at all: every component drawn, nothing said.
+        assert_eq!(drawn_axes(&model, &series(nv, Vec3::zeros()), false), (vec![0, 1, 2], String::new()));
+    }
 }

@@ -22,6 +22,7 @@
 //!   samples are resampled ([`super::resample`]) onto the nearest even grid over the same duration.
 
 mod euler;
+mod parts;
 mod skeleton;
 
 pub(crate) use euler::euler_zxy_near;
@@ -31,7 +32,7 @@ pub(crate) use skeleton::{segments, Segment};
 use super::resample::{even_times, sample_at};
 use super::{body_placements, to_y_up, LengthUnit, Options};
 use crate::error::{Error, Result};
-use crate::model::{JointKind, Model, Shape};
+use crate::model::{JointKind, Model};
 use crate::report::record::PlanRecord;
 use crate::spatial::{Mat3, Transform, Vec3};
 use skeleton::{channel_names, depth_first, Rotation};
@@ -87,7 +88,7 @@ pub fn bvh(model: &Model, record: &PlanRecord, options: &Options) -> Result<Stri
 impl Writer<'_> {
     /// The offset of segment `s` from its parent at rest, BVH axes, in the file's unit.
     fn rest_offset(&self, s: usize) -> Vec3 {
-        rest_offset(&self.rest, &self.segments, s) * self.scale
+        rest_offset(&self.segments, s) * self.scale
     }
 
     fn write_segment(&self, out: &mut String, s: usize, depth: usize) {
@@ -108,7 +109,10 @@ impl Writer<'_> {
             self.write_segment(out, c, depth + 1);
         }
         if segment.children.is_empty() {
-            let end = to_y_up() * self.rest[segment.body].rotation * end_point(self.model, segment.body) * self.scale;
+            let end = match segment.frame {
+                Some(_) => parts::part_end(self.model, &self.rest, &self.segments, s) * self.scale,
+                None => to_y_up() * self.rest[segment.body].rotation * end_point(self.model, segment.body) * self.scale,
+            };
             let _ = writeln!(out, "{indent}\tEnd Site\n{indent}\t{{");
             let _ = writeln!(out, "{indent}\t\tOFFSET {:.6} {:.6} {:.6}", end.x, end.y, end.z);
             let _ = writeln!(out, "{indent}\t}}");
@@ -152,13 +156,11 @@ impl Writer<'_> {
     }
 }
 
-/// The offset (m, BVH axes) of segment `s`'s head from its parent's body origin at rest (`rest` the
-/// bodies' placements at q = 0): `C·(p_head − p_parent)`.
-pub(crate) fn rest_offset(rest: &[Transform], segments: &[Segment], s: usize) -> Vec3 {
+/// The offset (m, BVH axes) of segment `s`'s head from its parent's at rest: `C·(p_head − p_parent)`.
+pub(crate) fn rest_offset(segments: &[Segment], s: usize) -> Vec3 {
     let segment = &segments[s];
-    let head = segment.joints.first().map_or(Vec3::zeros(), |&i| rest[i].translation);
-    let parent_origin = segment.parent.map_or(Vec3::zeros(), |p| rest[segments[p].body].translation);
-    to_y_up() * (head - parent_origin)
+    let parent_head = segment.parent.map_or(Vec3::zeros(), |p| segments[p].head);
+    to_y_up() * (segment.head - parent_head)
 }
 
 /// Where a leaf segment ends (body frame), so that the last bone points along the limb: twice the centre
@@ -170,10 +172,5 @@ fn end_point(model: &Model, body: usize) -> Vec3 {
         return b.inertia.com * 2.0;
     }
     let frames = model.frames.iter().filter(|f| f.body == body).map(|f| f.placement.translation);
-    let shapes = b.shapes.iter().flat_map(|s| match s {
-        Shape::Box { origin, .. } | Shape::Cylinder { origin, .. } => vec![origin.translation],
-        Shape::Capsule { a, b, .. } => vec![*a, *b],
-        Shape::Sphere { center, .. } => vec![*center],
-    });
-    frames.chain(shapes).fold(Vec3::zeros(), |best, p| if p.norm() > best.norm() { p } else { best })
+    frames.chain(parts::shape_points(model, body)).fold(Vec3::zeros(), |best, p| if p.norm() > best.norm() { p } else { best })
 }

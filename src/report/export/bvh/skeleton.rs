@@ -8,7 +8,7 @@
 use super::super::children;
 use super::super::to_y_up;
 use crate::model::{JointKind, Model};
-use crate::spatial::Transform;
+use crate::spatial::{Transform, Vec3};
 
 /// BVH axis names, X, Y, Z.
 pub const AXIS_NAMES: [&str; 3] = ["X", "Y", "Z"];
@@ -43,8 +43,12 @@ pub struct Segment {
     pub name: String,
     /// The model joints it stands for, in chain order (empty for a fixed root).
     pub joints: Vec<usize>,
-    /// The body it moves (the last of its chain).
+    /// The body it moves (the last of its chain), or a welded part's body.
     pub body: usize,
+    /// The welded part (index into the model's frames) it stands for, if it is one ([`super::parts`]).
+    pub frame: Option<usize>,
+    /// Its origin at rest (m, model axes): its body's origin, or the part's frame.
+    pub head: Vec3,
     pub parent: Option<usize>,
     pub children: Vec<usize>,
     /// The BVH axes of its position channels (each holds the full coordinate, offset included).
@@ -60,6 +64,8 @@ pub fn segments(model: &Model, rest: &[Transform], moves: &[bool], set: ChannelS
         name: model.bodies[0].name.clone(),
         joints: vec![],
         body: 0,
+        frame: None,
+        head: Vec3::zeros(),
         parent: None,
         children: vec![],
         positions: vec![],
@@ -84,7 +90,10 @@ pub fn segments(model: &Model, rest: &[Transform], moves: &[bool], set: ChannelS
         segment.name = token(&segment_name(model, segment));
         segment.positions = position_axes(model, rest, segment, moves, set);
         segment.rotation = rotation_channels(model, rest, segment, moves, set);
+        // A chain's joints share one place at rest (its slides at 0): its last body's origin.
+        segment.head = segment.joints.last().map_or(Vec3::zeros(), |&i| rest[i].translation);
     }
+    super::parts::add_parts(model, rest, &mut segments);
     make_names_unique(&mut segments);
     segments
 }
@@ -160,7 +169,7 @@ fn rotation_channels(model: &Model, rest: &[Transform], segment: &Segment, moves
 }
 
 /// BVH names are single words.
-fn token(name: &str) -> String {
+pub(super) fn token(name: &str) -> String {
     let t: String = name.chars().map(|c| if c.is_whitespace() || c == '{' || c == '}' { '_' } else { c }).collect();
     if t.is_empty() {
         "joint".into()
