@@ -86,3 +86,18 @@ fn refine_from_continues_a_plan_from_its_n() {
     assert_eq!(code, 1, "{stderr}");
     assert!(stderr.contains("--control-points"), "{stderr}");
 }
+
+/// An optimum of ≈ 0 effort — the pendulum's free swing, 3.4e-4 N²m²s at N = 16 against 223 for the linear
+/// guess — is converged once the effort changes by < 0.5 % of a thousandth of the guess's: relative to the
+/// effort itself, the change from 3.4e-4 to 2.1e-5 is 1500 % and would refine to the cap.
+#[test]
+fn an_effort_of_almost_nothing_is_converged_on_the_guess_s_scale() {
+    let dir = scratch("pendulum");
+    let task = cli::root().join("examples/pendulum.toml");
+    let (refined, _) = plan(&["--refine"], Some(&task), &dir.join("out"));
+    let levels = levels(&refined);
+    assert_eq!(refined["discretization"], "converged", "{levels:?}");
+    assert_eq!(levels.len(), 2, "{levels:?}");
+    let (a, b) = (levels[0].1, levels[1].1);
+    assert!((a - b).abs() / b > 1.0 && b < 1e-3, "{levels:?}");
+}

@@ -33,6 +33,8 @@ pub struct Level {
     pub control_points: usize,
     /// `½∫τᵀWτ dt` at this N (N²m²s).
     pub objective: f64,
+    /// The effort of this level's starting point (N²m²s).
+    pub initial_guess_objective: f64,
     /// Whether the solve at this N converged.
     pub converged: bool,
     /// Accepted iterations at this N.
@@ -119,6 +121,7 @@ fn level(n: usize, plan: &Plan) -> Level {
     Level {
         control_points: n,
         objective: plan.outcome.objective,
+        initial_guess_objective: plan.initial_objective,
         converged: plan.converged(),
         iterations: plan.outcome.iterations,
         solve_seconds: plan.solve_seconds,
@@ -135,8 +138,14 @@ fn finer_spec(spec: &Spec, plan: &Plan, n: usize) -> Result<Spec> {
     Ok(Spec { n_ctrl: n, initial_guess: InitialGuess::Samples(guess), ..spec.clone() })
 }
 
-/// The relative change of the effort at the last refinement, if there was one.
+/// The relative change of the effort at the last refinement, if there was one: relative to the effort, or to
+/// [`NEGLIGIBLE_EFFORT`] × the first level's initial guess where the effort is below that (an optimum of
+/// ≈ 0 effort — the pendulum's free swing, 3.4e-4 against its guess's 223 — has no meaningful relative change).
 pub fn last_change(levels: &[Level]) -> Option<f64> {
-    let [.., a, b] = levels else { return None };
-    (a.converged && b.converged).then(|| (b.objective - a.objective).abs() / b.objective.abs().max(f64::MIN_POSITIVE))
+    let ([first, ..], [.., a, b]) = (levels, levels) else { return None };
+    let scale = b.objective.abs().max(NEGLIGIBLE_EFFORT * first.initial_guess_objective.abs()).max(f64::MIN_POSITIVE);
+    (a.converged && b.converged).then(|| (b.objective - a.objective).abs() / scale)
 }
+
+/// An effort below this share of the initial guess's is ≈ 0 for judging the refinement.
+pub const NEGLIGIBLE_EFFORT: f64 = 1e-3;
