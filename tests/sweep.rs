@@ -186,3 +186,27 @@ fn a_share_plans_and_counts_only_its_own_plans() {
         rows_by_index(&std::fs::read_to_string(&report.csv).unwrap()).iter().map(|r| r[0].parse().unwrap()).collect();
     assert_eq!(indices, vec![3, 4, 5, 6, 7]);
 }
+
+/// A base task that does not fix N has its rows planned at N = 16, not refined (a converged N per row would
+/// multiply the sweep's cost), unless it asks to refine; the same task planned alone is refined.
+#[test]
+fn rows_of_a_base_without_n_are_not_refined_unless_it_asks() {
+    let dir = scratch("no-n");
+    let text = std::fs::read_to_string(root().join("examples/pendulum.toml")).unwrap();
+    let line = text.lines().find(|l| l.starts_with("control_points")).unwrap().to_string();
+    let unfixed = text.replace(&line, "").replace("../models/", &format!("{}/models/", root().display()));
+    for (name, base, refines) in [
+        ("plain", unfixed.clone(), false),
+        ("asked", unfixed.replace("[discretization]", "[discretization]\nrefine = true"), true),
+    ] {
+        let base_path = dir.join(format!("{name}.toml"));
+        std::fs::write(&base_path, &base).unwrap();
+        let sweep_path = dir.join(format!("{name}-sweep.toml"));
+        let parameter = "[[parameter]]\npath = \"motion.duration\"\nvalues = [0.6]\n";
+        std::fs::write(&sweep_path, format!("base = \"{}\"\n\n{parameter}", base_path.display())).unwrap();
+        let task = load(&sweep_path).task(0).unwrap();
+        assert_eq!((task.refinement.is_some(), task.spec.n_ctrl), (refines, 16), "{name}");
+        let alone = mintorque::plan::task::Task::parse(&base, &base_path).unwrap();
+        assert!(alone.refinement.is_some(), "{name}: the task alone refines");
+    }
+}
