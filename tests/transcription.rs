@@ -266,3 +266,42 @@ fn torque_rows_use_the_bound_of_their_direction() {
     assert_eq!(dims.n_ineq, fewer.n_ineq + 2 * per);
     assert_eq!(dims.n_eq, fewer.n_eq + problem.n_eq_per_node());
 }
+
+/// A free-floating figure planned to a goal posture (no frame goal): the end posture is an unknown, the
+/// actuated joints' end values are held within 0.01° of the goal by two rows each, the root's are free.
+#[test]
+fn free_root_posture_goal_holds_the_joints_not_the_root() {
+    let text = "[model]\nhuman = \"sagittal\"\nroot = \"free\"\n\n[motion]\nduration = 1.0\nstart = {}\n\
+        goal = { shoulder = 90.0 }\n\n[environment]\ngravity = \"space\"\n\n[discretization]\ncontrol_points = 7\n";
+    let task = mintorque::plan::task::Task::parse(text, std::path::Path::new("free.toml")).unwrap();
+    let spec = &task.spec;
+    let actuated: Vec<usize> = (0..spec.model.nv()).filter(|&i| !spec.model.is_unactuated(i)).collect();
+    assert_eq!(spec.goal_joints, actuated);
+    assert!(spec.goal_is_free());
+    let mut problem = Transcription::new(spec).unwrap();
+    let dims = problem.dims();
+    let plain = Spec { goal_joints: vec![], ..spec.clone() };
+    assert_eq!(dims.n_ineq, Transcription::new(&plain).unwrap().dims().n_ineq + 2 * actuated.len());
+    jacobians_match_differences(spec, 43, 0.3);
+    // At the initial guess (straight to the goal) every joint row holds; the shoulder's end 1° past its goal
+    // breaks exactly its upper row, by 1° less the tolerance. The root's end moves without a row noticing.
+    let mut eval = Evaluation::new(dims, &problem.jacobian_patterns()).unwrap();
+    let rows = |problem: &mut Transcription, x: &[f64], eval: &mut Evaluation| {
+        problem.evaluate(x, false, eval).unwrap();
+        eval.g[dims.n_ineq - 2 * actuated.len()..].to_vec()
+    };
+    let x0 = mintorque::plan::initial_x(spec, &mut problem).unwrap();
+    assert!(rows(&mut problem, &x0, &mut eval).iter().all(|g| *g < 0.0));
+    let last = problem.layout.n_ctrl - 1;
+    let shoulder = spec.model.dof_index("shoulder").unwrap();
+    let root_pitch = spec.model.dof_index("root_pitch").unwrap();
+    let mut x = x0.clone();
+    x[problem.layout.joint_var(last, root_pitch).unwrap()] += 0.3;
+    assert!(rows(&mut problem, &x, &mut eval).iter().all(|g| *g < 0.0), "a root row");
+    x[problem.layout.joint_var(last, shoulder).unwrap()] += 1f64.to_radians();
+    let g = rows(&mut problem, &x, &mut eval);
+    let k = actuated.iter().position(|&i| i == shoulder).unwrap();
+    let want = 1f64.to_radians() - mintorque::plan::spec::JOINT_GOAL_TOLERANCE;
+    assert!((g[2 * k] - want).abs() < 1e-12, "{} vs {want}", g[2 * k]);
+    assert_eq!(g.iter().filter(|g| **g > 0.0).count(), 1);
+}

@@ -182,6 +182,9 @@ pub enum InitialGuess {
     Samples(Vec<(f64, Vec<f64>)>),
 }
 
+/// How far a goal joint's end value may be from the goal posture (rad: 0.01°).
+pub const JOINT_GOAL_TOLERANCE: f64 = 0.01 * std::f64::consts::PI / 180.0;
+
 /// A planning problem, resolved: what [`plan`](crate::plan::plan) solves.
 #[derive(Clone, Debug)]
 pub struct Spec {
@@ -205,6 +208,10 @@ pub struct Spec {
     /// Task-space goals: frames at world positions (and orientations) at the end or at via times. With one
     /// at the end, the goal posture is an unknown of the planner (`goal` is then its initial guess).
     pub frame_goals: Vec<FrameGoal>,
+    /// DOFs whose end values are held at `goal` (within [`JOINT_GOAL_TOLERANCE`]) by goal rows while the
+    /// end posture is an unknown: a free-floating figure's actuated joints when its goal is a posture (the
+    /// root ends where its momentum takes it). Empty otherwise (a fixed goal, or one solved for frame goals).
+    pub goal_joints: Vec<usize>,
     /// B-spline control points per joint, N.
     pub n_ctrl: usize,
     /// Gauss–Legendre nodes per knot span.
@@ -280,9 +287,9 @@ pub struct FrameGoal {
 }
 
 impl Spec {
-    /// Whether a task-space goal at the end makes the goal posture an unknown.
+    /// Whether the goal posture is an unknown: a task-space goal at the end, or goal joints held by rows.
     pub fn goal_is_free(&self) -> bool {
-        self.frame_goals.iter().any(|g| g.t.is_none())
+        self.frame_goals.iter().any(|g| g.t.is_none()) || !self.goal_joints.is_empty()
     }
 
     /// A problem with the task file's defaults (`docs/task-file.md`): the model's position and effort
@@ -303,6 +310,7 @@ impl Spec {
             start_condition: EndCondition::Rest,
             goal_condition: EndCondition::Rest,
             frame_goals: vec![],
+            goal_joints: vec![],
             n_ctrl: 16,
             nodes_per_span: 4,
             objective: Objective::Torque,

@@ -110,8 +110,8 @@ impl PlanContents {
     /// The stages of [`PlanContents::render`], in order: what each makes.
     pub fn stages(&self) -> Vec<&'static str> {
         let mut stages = vec!["plan data and tables", "3D viewer", "filmstrip"];
-        if self.filmstrip_view != View::Front && filmstrip::needs_front_view(&self.model, &self.record) {
-            stages.push("front filmstrip");
+        for view in self.extra_views() {
+            stages.push(if view == View::Front { "front filmstrip" } else { "side filmstrip" });
         }
         if self.plots {
             stages.push("motion plots");
@@ -120,6 +120,15 @@ impl PlanContents {
             }
         }
         stages
+    }
+
+    /// The filmstrips beside the task's own view: a 3D plan is shown from the front and the side (the side
+    /// view hides its sideways part, the front its forward part), whichever of them `filmstrip_view` is not.
+    fn extra_views(&self) -> Vec<View> {
+        if !filmstrip::needs_front_view(&self.model, &self.record) {
+            return vec![];
+        }
+        [View::Front, View::Side].into_iter().filter(|v| *v != self.filmstrip_view).collect()
     }
 
     /// [`PlanContents::render`], calling `progress(k, n, stage)` before each of its `n` stages (see
@@ -158,10 +167,9 @@ impl PlanContents {
         files.extend([motion_html(model, record, summary_text.as_deref())]);
         next();
         files.extend(filmstrip(model, record, self.filmstrip_view, super::filmstrip_names(None))?);
-        // A 3D plan gets a front view beside the side (or top) one: the side view would hide its sideways part.
-        if stages.contains(&"front filmstrip") {
+        for view in self.extra_views() {
             next();
-            files.extend(filmstrip(model, record, View::Front, super::filmstrip_names(Some(View::Front)))?);
+            files.extend(filmstrip(model, record, view, super::filmstrip_names(Some(view)))?);
         }
         if self.plots {
             next();

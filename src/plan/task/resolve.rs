@@ -36,7 +36,7 @@ pub fn resolve(file: &TaskFile, base: &Path, origin: &str) -> Result<Spec> {
     let contacts = contacts(&model, &file.constraints.contact, &start, origin)?;
     close_loops(&model, &contacts, &m.close_loop_with, [&mut start, &mut goal], origin)?;
     let (objective, mut weights) = objective(&model, &file.objective, origin)?;
-    free_floating(&model, file, &frame_goals, &gravity, &mut weights, origin)?;
+    let goal_joints = free_floating(&model, file, &frame_goals, &gravity, &mut weights, origin)?;
     let initial_guess = guess::initial_guess(&model, file, (&start, &goal), base, origin)?;
     let c = &file.constraints;
     let obstacles = super::solids::obstacles(&env.obstacle, origin)?;
@@ -52,6 +52,7 @@ pub fn resolve(file: &TaskFile, base: &Path, origin: &str) -> Result<Spec> {
         start_condition,
         goal_condition,
         frame_goals,
+        goal_joints,
         n_ctrl: file.discretization.n(),
         nodes_per_span: file.discretization.nodes_per_span,
         objective,
@@ -76,9 +77,10 @@ pub fn resolve(file: &TaskFile, base: &Path, origin: &str) -> Result<Spec> {
 
 /// A free-floating figure (`model.root = "free"`): its root's six generalised forces are held at zero by
 /// their effort limits of 0 and left out of the objective (weight 0). It has no ground, so neither a balance
-/// constraint nor push-only (ground) contacts; and its end pose follows from its momentum, so its goal
-/// must be a frame goal at the end (the goal posture is then solved for). Held by nothing under gravity it
-/// falls and cannot come to rest.
+/// constraint nor push-only (ground) contacts; and its end pose follows from its momentum: with a frame goal
+/// at the end the goal posture is solved for, otherwise the goal posture's actuated joints are held by rows
+/// and the root ends where it drifts — those joints are returned. Held by nothing under gravity it falls and
+/// cannot come to rest.
 fn free_floating(
     model: &Model,
     file: &TaskFile,
@@ -86,9 +88,9 @@ fn free_floating(
     gravity: &Vec3,
     weights: &mut [f64],
     origin: &str,
-) -> Result<()> {
+) -> Result<Vec<usize>> {
     if !model.is_free_floating() {
-        return Ok(());
+        return Ok(vec![]);
     }
     let c = &file.constraints;
     if c.balance.is_some() {
@@ -98,10 +100,6 @@ fn free_floating(
     if let Some(k) = c.contact.iter().position(|cs| cs.push_only) {
         let message = "a free-floating figure (model.root = \"free\") has no ground to push on: hold a frame with a bilateral contact (push_only = false), or fix the root";
         return Err(Error::task(origin, format!("constraints.contact[{k}].push_only"), message));
-    }
-    if !frame_goals.iter().any(|g| g.t.is_none()) {
-        let message = "a free-floating figure's end pose follows from its momentum: give where it is to reach as a [[motion.frame_goal]] at the end (no t), and the goal posture is solved for";
-        return Err(Error::task(origin, "motion.goal", message));
     }
     if gravity.norm() > 0.0 && c.contact.is_empty() {
         let message = format!(
@@ -115,7 +113,8 @@ fn free_floating(
             *w = 0.0;
         }
     }
-    Ok(())
+    let posture_goal = !frame_goals.iter().any(|g| g.t.is_none());
+    Ok(if posture_goal { (0..model.nv()).filter(|&i| !model.is_unactuated(i)).collect() } else { vec![] })
 }
 
 /// Gravity presets (m/s², along −up, `environment.up`): earth 9.81, mars 3.71, moon 1.62, space 0.

@@ -73,6 +73,8 @@ struct GoalInfo {
 #[derive(Clone, Debug)]
 pub(super) struct Goals {
     info: Vec<GoalInfo>,
+    /// The goal joints' rows, after the frame goals' (`joint_goal.rs`).
+    pub(super) joints: super::joint_goal::JointGoals,
     grad: Vec<f64>,
     zeros: Vec<f64>,
     jac: Vec<Vec3>,
@@ -90,11 +92,17 @@ impl Goals {
             let n_rows = if pairs.is_empty() { POSITION_ROWS } else { POSITION_ROWS + 1 };
             info.push(GoalInfo { basis, path: path_dofs(model, model.frames[g.frame].body), pairs, n_rows });
         }
-        Goals { info, grad: vec![0.0; nv], zeros: vec![0.0; nv], jac: vec![Vec3::zeros(); nv] }
+        let joints = super::joint_goal::JointGoals::new(spec, spline);
+        Goals { info, joints, grad: vec![0.0; nv], zeros: vec![0.0; nv], jac: vec![Vec3::zeros(); nv] }
     }
 
-    /// Inequality rows.
+    /// Inequality rows: the frame goals', then the goal joints'.
     pub(super) fn n_rows(&self) -> usize {
+        self.frame_rows() + self.joints.n_rows()
+    }
+
+    /// The frame goals' rows.
+    fn frame_rows(&self) -> usize {
         self.info.iter().map(|g| g.n_rows).sum()
     }
 
@@ -118,6 +126,7 @@ impl Transcription<'_> {
             let (motion, _) = self.node_columns(&info.basis);
             g.extend(std::iter::repeat_n(motion, info.n_rows));
         }
+        g.extend(self.joint_goal_patterns());
         g
     }
 
@@ -142,6 +151,7 @@ impl Transcription<'_> {
                 row += 1;
             }
         }
+        self.joint_goal_rows(row, want_jac, out);
     }
 
     /// Goal `g`'s row values (six position rows, then orientation) at `work.q`, and `Σ weightsᵢ ∂rowᵢ/∂q`
@@ -205,6 +215,9 @@ impl Transcription<'_> {
 
     /// How a goal row reads in a report: the goal's name and what it asks.
     pub(super) fn goal_row_name(&self, r: usize) -> String {
+        if r >= self.goals.frame_rows() {
+            return self.joint_goal_row_name(r - self.goals.frame_rows());
+        }
         let (g, which) = self.goals.decode(r);
         let goal = &self.spec.frame_goals[g];
         let frame = &self.spec.model.frames[goal.frame].name;
@@ -229,6 +242,9 @@ impl Transcription<'_> {
 
     /// A goal row's raw value in units: mm beyond the tolerance, or degrees.
     pub(super) fn goal_violation(&self, r: usize, raw: f64) -> String {
+        if r >= self.goals.frame_rows() {
+            return self.joint_goal_violation(raw);
+        }
         let (g, which) = self.goals.decode(r);
         let goal = &self.spec.frame_goals[g];
         if which < POSITION_ROWS {

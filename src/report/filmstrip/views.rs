@@ -1,5 +1,6 @@
-//! Which filmstrips a plan gets besides the task's own view: a front view too when a side view would hide
-//! part of the motion — the figure spreads or moves sideways (world y, the side view's line of sight).
+//! Which plans count as 3D: a side view would hide part of the motion — the figure spreads or moves
+//! sideways (world y, the side view's line of sight). Such a plan gets front and side filmstrips besides
+//! the task's own view (`plan_dir::files`).
 
 use crate::dynamics::Data;
 use crate::model::Model;
