@@ -51,6 +51,14 @@ fn a_task_that_does_not_fix_n_is_refined_until_the_effort_settles() {
     assert!(chosen["effort_change_last_refinement"].as_f64().unwrap() < 0.005);
     assert_eq!(chosen["control_points"].as_u64(), levels_chosen.last().map(|l| l.0));
     assert!(stdout.contains("discretisation converged"), "{stdout}");
+    let (_, _, stderr) = cli::run(&[
+        OsStr::new("plan"),
+        OsStr::new("--no-plots"),
+        OsStr::new("--out"),
+        dir.join("again").as_os_str(),
+        double_pendulum(&dir, "").as_os_str(),
+    ]);
+    assert!(stderr.contains("planning at N = 16 control points, then refining N"), "{stderr}");
     // Every level's iterations are counted in the plan's.
     assert_eq!(chosen["iterations"].as_u64().unwrap(), levels_chosen.iter().map(|l| l.2).sum::<u64>());
 

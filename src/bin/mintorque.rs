@@ -63,6 +63,15 @@ fn load_model(path: &Path, read: ModelArgs) -> Result<mintorque::Model> {
 /// Plans a task (overrides applied, settings checked), reporting why it did not converge if it did not;
 /// records the solver's iterations into `trace` when given.
 fn solve(task: &mut Task, quiet: bool, mut trace: Option<&mut Trace>) -> Result<plan::Plan> {
+    if let Some(r) = task.refinement.filter(|_| !quiet) {
+        eprintln!(
+            "planning at N = {} control points, then refining N until the effort changes by < {} % (at most N = {}); \
+             fix discretization.control_points (or --control-points) to plan one N",
+            task.spec.n_ctrl,
+            100.0 * r.tolerance,
+            r.max_control_points
+        );
+    }
     let (bar, mut show) = progress::spinner(quiet);
     let mut observer = |p: &mintorque::solve::Progress| {
         show(p);
