@@ -35,6 +35,8 @@ pub struct Level {
     pub objective: f64,
     /// The effort of this level's starting point (N²m²s).
     pub initial_guess_objective: f64,
+    /// Why its solve stopped.
+    pub reason: String,
     /// Whether the solve at this N converged.
     pub converged: bool,
     /// Accepted iterations at this N.
@@ -58,8 +60,8 @@ pub enum Settled {
 }
 
 impl Settled {
-    /// What the verdict means, for the terminal.
-    pub fn describe(self, refinement: &Refinement) -> String {
+    /// What the verdict means, for the terminal (`levels`: the refinement's, to name a failed level).
+    pub fn describe(self, refinement: &Refinement, levels: &[Level]) -> String {
         match self {
             Settled::Converged => format!("converged (the effort changed by < {} %)", 100.0 * refinement.tolerance),
             Settled::AtCap => format!(
@@ -67,7 +69,12 @@ impl Settled {
                 refinement.max_control_points,
                 100.0 * refinement.tolerance
             ),
-            Settled::FinerNotConverged => "NOT converged: the finer level's solve did not converge".into(),
+            Settled::FinerNotConverged => match levels.last() {
+                Some(l) => {
+                    format!("NOT converged: the finer level's solve (N = {}) did not converge: {}", l.control_points, l.reason)
+                }
+                None => "NOT converged: the finer level's solve did not converge".into(),
+            },
             Settled::FirstNotConverged => "not refined: the first level did not converge".into(),
         }
     }
@@ -122,6 +129,7 @@ fn level(n: usize, plan: &Plan) -> Level {
         control_points: n,
         objective: plan.outcome.objective,
         initial_guess_objective: plan.initial_objective,
+        reason: plan.outcome.reason.to_string(),
         converged: plan.converged(),
         iterations: plan.outcome.iterations,
         solve_seconds: plan.solve_seconds,

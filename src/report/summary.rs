@@ -247,7 +247,7 @@ impl Summary {
             refinement: plan.refinement.clone(),
             effort_change_last_refinement: crate::plan::last_change(&plan.refinement),
             discretization: plan.refinement_settled.map(|(settled, _)| settled),
-            discretization_verdict: plan.refinement_settled.map(|(settled, r)| settled.describe(&r)),
+            discretization_verdict: plan.refinement_settled.map(|(settled, r)| settled.describe(&r, &plan.refinement)),
             near_singularities: super::singularity::near_singularities(model, samples.iter().map(|s| (s.t, s.q.as_slice()))),
         }
     }
