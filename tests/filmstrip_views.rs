@@ -5,7 +5,7 @@ use mintorque::model::human::{HumanParams, Structure};
 use mintorque::model::{urdf, Model};
 use mintorque::plan_dir::{self, PlanContents, WriteOptions};
 use mintorque::report::filmstrip::View;
-use mintorque::report::record::{PlanRecord, SampleRecord, FORMAT};
+use mintorque::report::record::{PlanRecord, SampleRecord};
 use std::path::Path;
 
 /// A record of `model` bending every joint smoothly by up to `amplitude` rad over 11 samples in 1 s.
@@ -19,25 +19,7 @@ fn record(model: &Model, amplitude: f64) -> PlanRecord {
             SampleRecord { t, q, qd: vec![0.0; nv], qdd: vec![0.0; nv], tau: vec![1.0; nv], contact_forces: vec![] }
         })
         .collect();
-    PlanRecord {
-        format: FORMAT.into(),
-        model_name: model.name.clone(),
-        joint_names: model.joint_names().iter().map(|s| s.to_string()).collect(),
-        duration: 1.0,
-        gravity: [0.0, 0.0, -9.81],
-        n_ctrl: 0,
-        ctrl: vec![],
-        lambda_ctrl: vec![],
-        support: None,
-        obstacles: vec![],
-        collision_shapes: vec![],
-        contacts: vec![],
-        converged: true,
-        multipliers: None,
-        check_nodes: vec![],
-        closure_nodes: vec![],
-        samples,
-    }
+    PlanRecord { duration: 1.0, gravity: [0.0, 0.0, -9.81], ..PlanRecord::of_samples(model, samples) }
 }
 
 /// The filmstrip files `model`'s plan directory gets when its task asks for `view`.

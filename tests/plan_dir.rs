@@ -5,7 +5,7 @@
 
 use mintorque::model::{urdf, Model};
 use mintorque::plan_dir::{self, PlanContents, WriteOptions};
-use mintorque::report::record::{ContactRecord, PlanRecord, SampleRecord, FORMAT};
+use mintorque::report::record::{ContactRecord, PlanRecord, SampleRecord};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
@@ -34,25 +34,7 @@ fn contents(amplitude: f64, contact: bool, plots: bool) -> PlanContents {
             }
         })
         .collect();
-    let record = PlanRecord {
-        format: FORMAT.into(),
-        model_name: m.name.clone(),
-        joint_names: m.joint_names().iter().map(|s| s.to_string()).collect(),
-        duration: 1.0,
-        gravity: [0.0, 0.0, -9.81],
-        n_ctrl: 0,
-        ctrl: vec![],
-        lambda_ctrl: vec![],
-        contacts,
-        support: None,
-        obstacles: vec![],
-        collision_shapes: vec![],
-        converged: true,
-        multipliers: None,
-        check_nodes: vec![],
-        closure_nodes: vec![],
-        samples,
-    };
+    let record = PlanRecord { duration: 1.0, gravity: [0.0, 0.0, -9.81], contacts, ..PlanRecord::of_samples(&m, samples) };
     PlanContents { plots, ..PlanContents::from_record(m, record) }
 }
 

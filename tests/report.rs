@@ -10,7 +10,7 @@ use mintorque::plan_dir::load as load_plan_dir;
 use mintorque::report::ergonomics::{ergonomics, intervals_above, text_table};
 use mintorque::report::export::{export, export_with, ChannelSet, Format, Options};
 use mintorque::report::plots::{plot_svgs, plots};
-use mintorque::report::record::{ContactRecord, PlanRecord, SampleRecord, FORMAT};
+use mintorque::report::record::{ContactRecord, PlanRecord, SampleRecord};
 use mintorque::spatial::{axis_angle, Inertia, Mat3, Transform, Vec3};
 use std::collections::BTreeMap;
 use std::f64::consts::PI;
@@ -37,23 +37,9 @@ fn record(model: &Model, times: &[f64], motion: impl Fn(usize, f64) -> [f64; 4])
         })
         .collect();
     PlanRecord {
-        format: FORMAT.into(),
-        model_name: model.name.clone(),
-        joint_names: model.joint_names().iter().map(|s| s.to_string()).collect(),
         duration: times.last().copied().unwrap_or(0.0),
         gravity: [0.0, 0.0, -9.81],
-        n_ctrl: 0,
-        ctrl: vec![],
-        lambda_ctrl: vec![],
-        contacts: vec![],
-        support: None,
-        obstacles: vec![],
-        collision_shapes: vec![],
-        converged: true,
-        multipliers: None,
-        check_nodes: vec![],
-        closure_nodes: vec![],
-        samples,
+        ..PlanRecord::of_samples(model, samples)
     }
 }
 

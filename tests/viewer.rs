@@ -7,7 +7,7 @@ use mintorque::model::human::{HumanParams, Structure};
 use mintorque::model::{urdf, Model};
 use mintorque::plan_dir::{self, PlanContents, WriteOptions};
 use mintorque::report::filmstrip::{filmstrip_png, filmstrip_svg, needs_front_view, View};
-use mintorque::report::record::{ContactRecord, PlanRecord, SampleRecord, FORMAT};
+use mintorque::report::record::{ContactRecord, PlanRecord, SampleRecord};
 use mintorque::report::solids::ObstacleRecord;
 use mintorque::report::viewer::{embedded_data, file_url, motion_html, VIEW_FILES};
 use std::path::{Path, PathBuf};
@@ -58,23 +58,11 @@ fn record(model: &Model, duration: f64, n: usize, amplitude: f64, contact_frames
         })
         .collect();
     PlanRecord {
-        format: FORMAT.into(),
-        model_name: model.name.clone(),
-        joint_names: model.joint_names().iter().map(|s| s.to_string()).collect(),
         duration,
         gravity: [0.0, 0.0, -9.81],
-        n_ctrl: 0,
-        ctrl: vec![],
-        lambda_ctrl: vec![],
         support: (!contacts.is_empty()).then_some([[-0.05, 0.25], [-0.15, 0.15]]),
-        obstacles: vec![],
-        collision_shapes: vec![],
         contacts,
-        converged: true,
-        multipliers: None,
-        check_nodes: vec![],
-        closure_nodes: vec![],
-        samples,
+        ..PlanRecord::of_samples(model, samples)
     }
 }
 

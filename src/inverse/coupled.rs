@@ -8,7 +8,7 @@
 //! of joints (names, rotational or translational, clamped ranges) that carries no mass and is never given
 //! to the dynamics.
 
-use super::driver::{process, record_of, Forces, Inverse, Settings};
+use super::driver::{process, Forces, Inverse, Settings};
 use super::loads::Loads;
 use super::motion::Motion;
 use crate::dynamics::{rnea::rnea, Data};
@@ -74,7 +74,7 @@ pub fn inverse_dynamics(osim: &Osim, motion: &Motion, settings: &Settings, loads
         Ok(tau)
     };
     let mut inverse = process(&coordinate_joints(osim), motion, settings, loads, forces)?;
-    inverse.chain = Some(record_of(chain, chain_samples));
+    inverse.chain = Some(crate::report::record::PlanRecord::of_samples(chain, chain_samples));
     Ok(inverse)
 }
 

@@ -15,7 +15,7 @@ use super::spline::CubicSpline;
 use crate::dynamics::{rnea::rnea, Data};
 use crate::error::{Error, Result};
 use crate::model::{Model, Passive};
-use crate::report::record::{PlanRecord, SampleRecord, FORMAT};
+use crate::report::record::{PlanRecord, SampleRecord};
 
 /// The default low-pass cutoff (Hz): 6 Hz, the usual choice for gait and lifting kinematics.
 pub const DEFAULT_FILTER_HZ: f64 = 6.0;
@@ -141,7 +141,7 @@ pub(super) fn process(
         }
         samples.push(SampleRecord { t, q, qd, qdd, tau, contact_forces: Vec::new() });
     }
-    let record = record_of(joints, samples);
+    let record = PlanRecord::of_samples(joints, samples);
     Ok(Inverse { record, chain: None, rate_hz, settings: *settings, input_samples: motion.times.len() })
 }
 
@@ -236,31 +236,6 @@ fn differentiate(
         }
     }
     Ok(states)
-}
-
-/// The samples as a plan's record (no control points, no contacts), for the plan reports.
-pub(super) fn record_of(model: &Model, samples: Vec<SampleRecord>) -> PlanRecord {
-    let duration = samples.last().map_or(0.0, |s| s.t) - samples.first().map_or(0.0, |s| s.t);
-    let g = model.gravity;
-    PlanRecord {
-        format: FORMAT.into(),
-        model_name: model.name.clone(),
-        joint_names: model.joint_names().iter().map(|s| s.to_string()).collect(),
-        duration,
-        gravity: [g.x, g.y, g.z],
-        n_ctrl: 0,
-        ctrl: Vec::new(),
-        lambda_ctrl: Vec::new(),
-        contacts: Vec::new(),
-        support: None,
-        obstacles: Vec::new(),
-        collision_shapes: Vec::new(),
-        converged: true,
-        multipliers: None,
-        check_nodes: Vec::new(),
-        closure_nodes: Vec::new(),
-        samples,
-    }
 }
 
 /// An error of a step (the filter, a spline) made to name the motion's file.

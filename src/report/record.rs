@@ -98,6 +98,33 @@ pub struct PlanRecord {
 pub const FORMAT: &str = "mintorque-plan-1";
 
 impl PlanRecord {
+    /// A record of samples alone, with no plan behind them (a recorded motion's inverse dynamics, a
+    /// synthetic motion): no control points, contacts, support or solids; the duration from the first sample
+    /// to the last; the model's gravity.
+    pub fn of_samples(model: &crate::model::Model, samples: Vec<SampleRecord>) -> PlanRecord {
+        let duration = samples.last().map_or(0.0, |s| s.t) - samples.first().map_or(0.0, |s| s.t);
+        let g = model.gravity;
+        PlanRecord {
+            format: FORMAT.into(),
+            model_name: model.name.clone(),
+            joint_names: model.joint_names().iter().map(|s| s.to_string()).collect(),
+            duration,
+            gravity: [g.x, g.y, g.z],
+            n_ctrl: 0,
+            ctrl: Vec::new(),
+            lambda_ctrl: Vec::new(),
+            contacts: Vec::new(),
+            support: None,
+            obstacles: Vec::new(),
+            collision_shapes: Vec::new(),
+            converged: true,
+            multipliers: None,
+            check_nodes: Vec::new(),
+            closure_nodes: Vec::new(),
+            samples,
+        }
+    }
+
     /// The record of `plan`, solved for `spec`, with the samples `samples`.
     pub fn new(spec: &Spec, plan: &Plan, samples: &[NodeValues]) -> PlanRecord {
         let model = &spec.model;
