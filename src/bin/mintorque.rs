@@ -142,8 +142,10 @@ fn run_plan(task_path: Option<&Path>, out: &Path, overrides: &Overrides, from: &
         println!("results in {}", out.display());
     }
     eprint!("{}", report::singularity::warning_lines(&summary.near_singularities));
-    if let Some(verdict) = summary.discretization_verdict.as_ref().filter(|v| v.starts_with("NOT")) {
-        eprintln!("warning: the discretisation is {verdict}: more control points may lower the effort further");
+    if let (Some(settled), Some(verdict)) = (summary.discretization, &summary.discretization_verdict) {
+        if !settled.is_settled() {
+            eprintln!("warning: the discretisation is {verdict}: more control points may lower the effort further");
+        }
     }
     // The worst constraint at the nodes, in units, when it is violated there (the between-node misses are
     // in the reason).

@@ -60,6 +60,11 @@ pub enum Settled {
 }
 
 impl Settled {
+    /// Whether N is converged — or never was refined because the first level failed (its own error says so).
+    pub fn is_settled(self) -> bool {
+        matches!(self, Settled::Converged | Settled::FirstNotConverged)
+    }
+
     /// What the verdict means, for the terminal (`levels`: the refinement's, to name a failed level).
     pub fn describe(self, refinement: &Refinement, levels: &[Level]) -> String {
         match self {

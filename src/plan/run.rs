@@ -7,7 +7,7 @@ use super::guess::{initial_x, objective_at};
 use super::multistart::{self, MultiStart, StartReport};
 use super::{validate, Plan, SolverKind, Spec, Transcription};
 use crate::error::{Error, Result};
-use crate::solve::{self, Outcome, Problem, Progress, Settings, Solver, StopReason, STUCK_FAR_FROM_FEASIBLE};
+use crate::solve::{self, Outcome, Problem, Progress, Settings, Solver, StopReason};
 use std::time::{Duration, Instant};
 
 /// Plans the motion of `spec` from its initial guess: validates it, builds the guess, solves, and checks the
@@ -132,7 +132,7 @@ pub(super) fn run_start(
     let mut spent = Spent::of(&outcome);
     for &polisher in polishers {
         let left = settings.max_iterations.saturating_sub(spent.iterations);
-        if !worth_polishing(&outcome) || left == 0 || remaining(deadline).is_some_and(|t| t <= 0.0) {
+        if !worth_polishing(&outcome, settings) || left == 0 || remaining(deadline).is_some_and(|t| t <= 0.0) {
             break;
         }
         let polish_settings = Settings {
@@ -155,12 +155,12 @@ pub(super) fn run_start(
 }
 
 /// Whether a phase's result is one a polish can finish: it stalled, crawled or ran out of iterations
-/// near feasibility (scaled violation at most [`STUCK_FAR_FROM_FEASIBLE`]). Far from it the polish
-/// only spends the budget: the solve is stuck short of feasibility ([`StopReason::StuckInfeasible`]).
-fn worth_polishing(outcome: &Outcome) -> bool {
+/// near feasibility (not [`Settings::far_from_feasible`]). Far from it the polish only spends the
+/// budget: the solve is stuck short of feasibility ([`StopReason::StuckInfeasible`]).
+fn worth_polishing(outcome: &Outcome, settings: &Settings) -> bool {
     !outcome.converged
         && matches!(outcome.reason, StopReason::Stalled | StopReason::NoProgress { .. } | StopReason::MaxIterations)
-        && outcome.worst_violation <= STUCK_FAR_FROM_FEASIBLE
+        && !settings.far_from_feasible(outcome.worst_violation)
 }
 
 /// What a start's phases spent, kept or not.

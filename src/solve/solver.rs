@@ -80,6 +80,13 @@ pub struct Settings {
 /// `tol_violation`, far from a precision problem — and the planner's polish is not tried from there.
 pub const STUCK_FAR_FROM_FEASIBLE: f64 = 1e-3;
 
+impl Settings {
+    /// Whether a scaled violation is far from feasible: above [`STUCK_FAR_FROM_FEASIBLE`] and the tolerance.
+    pub fn far_from_feasible(&self, violation: f64) -> bool {
+        violation > STUCK_FAR_FROM_FEASIBLE.max(self.tol_violation)
+    }
+}
+
 /// The scaled violation below which a warm start is never said to have diverged, however it grew.
 pub const DIVERGED_VIOLATION: f64 = 1e-2;
 

@@ -14,7 +14,7 @@
 //!
 //! The solve ends when the convergence test holds, or when the inner solver gets stuck (line search
 //! failure, or no progress for a while: 50 steps for LM, `max(100, 2n)` for BFGS) in two successive outer iterations
-//! (stuck short of feasibility if the scaled violation is still above `STUCK_FAR_FROM_FEASIBLE`), or
+//! (stuck short of feasibility if the scaled violation is `Settings::far_from_feasible`), or
 //! when `w_p` would exceed `max_penalty` while the constraints are still violated (infeasible), or at a
 //! limit (iterations, outer iterations, time).
 
@@ -22,9 +22,7 @@ use std::time::{Duration, Instant};
 
 use super::{Assessment, AugmentedLagrangian, Evaluated, InnerSolver, InnerStatus, Limit, StallWatch};
 use crate::solve::problem::{checked_scales, ConstraintKind, Dims, Evaluation, Problem, Scales};
-use crate::solve::solver::{
-    ConstraintRef, Multipliers, Outcome, Progress, Settings, StopReason, DIVERGED_VIOLATION, STUCK_FAR_FROM_FEASIBLE,
-};
+use crate::solve::solver::{ConstraintRef, Multipliers, Outcome, Progress, Settings, StopReason, DIVERGED_VIOLATION};
 
 /// The inner tolerance of the first outer iteration (relative, like `tol_stationarity`).
 const FIRST_INNER_TOLERANCE: f64 = 1e-2;
@@ -291,7 +289,7 @@ impl AugmentedLagrangian<'_> {
             // Twice in a row the inner solver got stuck, though the multipliers changed in between: give up.
             if stuck >= 2 {
                 let reason = match status {
-                    _ if assessment.violation > STUCK_FAR_FROM_FEASIBLE.max(settings.tol_violation) => {
+                    _ if settings.far_from_feasible(assessment.violation) => {
                         let worst = self.worst_name(assessment.worst);
                         StopReason::StuckInfeasible { worst, violation: assessment.violation, penalty: self.penalty }
                     }
