@@ -3,6 +3,8 @@
 //! planned or replayed beside it, so that the test fails when the claim is false (docs/experiments.md says
 //! how each threshold was chosen). Each example is planned once per test binary and shared (`planned`).
 
+mod common;
+
 use mintorque::dynamics::{kinematics, rnea::rnea, Data};
 use mintorque::plan::{self, task::Task, transcription::worst_clearance, NodeValues, Plan, Spec};
 use mintorque::spatial::Vec3;
@@ -405,40 +407,9 @@ fn astronaut_handrail() {
     let goal = &r.spec.frame_goals[0];
     let reach = (r.frame_path("r_hand").last().unwrap() - goal.position).norm();
     assert!(reach < 0.011, "the hand ends {} mm from the rail", reach * 1e3);
-    // The bodies of the right arm: the subtree of the first right-shoulder joint.
-    let shoulder = r.joint("r_shoulder_y") + 1;
-    let in_arm = |mut b: usize| loop {
-        if b == shoulder {
-            break true;
-        }
-        if b == 0 {
-            break false;
-        }
-        b = m.joints[b].parent;
-    };
-    let mut data = Data::new(m);
-    let (mut worst_total, mut worst_arm, mut opposite) = (0.0f64, 0.0f64, true);
-    for s in &r.samples {
-        kinematics::placements(m, &mut data, &s.q);
-        kinematics::velocities(m, &mut data, &s.qd);
-        let c = kinematics::center_of_mass(m, &data, true).unwrap();
-        // Each part's angular momentum about the centre of mass: Σ (n − c × f) of its bodies' Iᵢvᵢ.
-        let (mut arm, mut rest) = (Vec3::zeros(), Vec3::zeros());
-        for b in 1..m.bodies.len() {
-            let h = data.oI[b].mul(&data.v[b]);
-            let about_c = h.n - c.cross(&h.f);
-            if in_arm(b) {
-                arm += about_c;
-            } else {
-                rest += about_c;
-            }
-        }
-        worst_total = worst_total.max((arm + rest).norm());
-        if arm.norm() > worst_arm {
-            worst_arm = arm.norm();
-            opposite = arm.dot(&rest) < 0.0;
-        }
-    }
+    // The right arm: the subtree of the first right-shoulder joint.
+    let arm = common::momentum::part_and_rest(m, &r.samples, r.joint("r_shoulder_y") + 1);
+    let (worst_arm, worst_total, opposite) = (arm.worst_part, arm.worst_total, arm.opposite);
     println!("handrail: the arm's angular momentum peaks at {worst_arm:.3} N·m·s, the whole body's stays ≤ {worst_total:.4}");
     assert!(worst_arm > 0.1, "the arm barely moves: {worst_arm} N·m·s");
     assert!(worst_total < 0.05 * worst_arm, "momentum not conserved: {worst_total} of the arm's {worst_arm} N·m·s");

@@ -217,8 +217,9 @@ fn second_order_term_matches_differences_of_the_gradient() {
     }
 }
 
-/// A free-floating figure (the sagittal human on a 6-DOF unactuated root, in space): its root's force rows
-/// — equalities at one collocation node per knot span — have exact Jacobians and second-order terms.
+/// A free-floating figure (the sagittal human on a 6-DOF unactuated root, in space): its root's momentum
+/// rows — equalities at one collocation node per knot span — and its joints' torques with the root
+/// accelerating freely (`τ_j − H_jr H_rr⁻¹ τ_r`) have exact Jacobians and second-order terms.
 #[test]
 fn free_root_rows_match_finite_differences() {
     let text = "[model]\nhuman = \"sagittal\"\nroot = \"free\"\n\n[motion]\nduration = 1.0\nstart = {}\n\n\

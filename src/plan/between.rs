@@ -35,8 +35,9 @@ pub struct Tolerances {
     pub centre_of_pressure_mm: f64,
     /// Two solids closer than their margin (mm, default 1: a tenth of the usual 1–2 cm margin).
     pub distance_mm: f64,
-    /// A free root's force (N) or moment (N·m) between its collocation nodes (default 1: 0.1 kg-weight).
-    pub root_force_n: f64,
+    /// A free body's momentum along a root joint between its collocation nodes (kg·m/s or kg·m²/s, default
+    /// 0.05: a 75-kg body drifting 0.7 mm/s).
+    pub root_momentum: f64,
 }
 
 impl Default for Tolerances {
@@ -50,7 +51,7 @@ impl Default for Tolerances {
             force_n: 1.0,
             centre_of_pressure_mm: 2.0,
             distance_mm: 1.0,
-            root_force_n: 1.0,
+            root_momentum: 1.0,
         }
     }
 }
@@ -66,7 +67,7 @@ impl Tolerances {
             RowKind::Force => self.force_n,
             RowKind::CentreOfPressure => self.centre_of_pressure_mm,
             RowKind::Distance => self.distance_mm,
-            RowKind::RootForce => self.root_force_n,
+            RowKind::RootMomentum => self.root_momentum,
         }
     }
 
@@ -81,7 +82,7 @@ impl Tolerances {
             ("force_n", self.force_n),
             ("centre_of_pressure_mm", self.centre_of_pressure_mm),
             ("distance_mm", self.distance_mm),
-            ("root_force_n", self.root_force_n),
+            ("root_momentum", self.root_momentum),
         ];
         for (name, v) in all {
             if !(v.is_finite() && v >= 0.0) {
@@ -218,7 +219,7 @@ pub(super) fn check_near(
         // Missed: excess > tolerance (a NaN fails too); over by less: near.
         if m.excess > tolerance || m.excess.is_nan() {
             found.add(group, t, span, m, tolerance);
-        } else if kind == ConstraintKind::Inequality && m.kind != RowKind::RootForce && m.excess > 0.0 {
+        } else if kind == ConstraintKind::Inequality && m.kind != RowKind::RootMomentum && m.excess > 0.0 {
             near.add(group, t, span, m, tolerance);
         }
     }
@@ -319,9 +320,9 @@ fn strength_turns(spec: &Spec, x: &[f64], times: &[f64]) -> Result<Vec<f64>> {
 /// closure and limit nodes, without times already in `nodes`.
 pub(super) fn more_nodes<'a>(violations: impl IntoIterator<Item = &'a NodeViolation>, nodes: &CheckNodes) -> CheckNodes {
     let mut more = CheckNodes::default();
-    // A free root's forces hold at their collocation nodes only (more rows would over-determine its spline):
+    // A free root's momenta hold at their collocation nodes only (more rows would over-determine its spline):
     // check nodes do not help them, more control points do.
-    for v in violations.into_iter().filter(|v| v.kind != RowKind::RootForce) {
+    for v in violations.into_iter().filter(|v| v.kind != RowKind::RootMomentum) {
         let closure = v.kind == RowKind::Closure;
         for &(_, t, _) in &v.spans {
             let (have, list) = if closure { (&nodes.closures, &mut more.closures) } else { (&nodes.limits, &mut more.limits) };

@@ -21,6 +21,7 @@ pub const ALL: &[Example] = &[
     Example { name: "arm_lift_earth", text: include_str!("../../examples/arm_lift_earth.toml") },
     Example { name: "arm_lift_mars", text: include_str!("../../examples/arm_lift_mars.toml") },
     Example { name: "arm_lift_space", text: include_str!("../../examples/arm_lift_space.toml") },
+    Example { name: "arm_lift_space_free", text: include_str!("../../examples/arm_lift_space_free.toml") },
     Example { name: "astronaut_handrail", text: include_str!("../../examples/astronaut_handrail.toml") },
     Example { name: "chin_up_earth", text: include_str!("../../examples/chin_up_earth.toml") },
     Example { name: "chin_up_space", text: include_str!("../../examples/chin_up_space.toml") },

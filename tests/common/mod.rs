@@ -3,6 +3,7 @@
 
 pub mod checks;
 pub mod cli;
+pub mod momentum;
 pub mod opensim;
 pub mod opensim_coupled;
 pub mod osim_states;

@@ -2,8 +2,9 @@
 //! solver's model `JᵀJ + Σ wⱼ∇²cⱼ` (see `solve::least_squares`).
 //!
 //! At a node the rows that curve are functions of the active torque `τ(z, λ)` and the root wrench
-//! `W(z, λ)`, `z = (q, q̇, q̈)`: the residuals `√wₖ √W_l τ_l`, the torque limits `±τᵢ − τ_max`, a free
-//! root's force rows `τᵢ = 0` (`root.rs`) and the balance rows `c·W`. With the rows' weights they add up to one scalar per node,
+//! `W(z, λ)`, `z = (q, q̇, q̈)`: the residuals `√wₖ √W_l τ_l`, the torque limits `±τᵢ − τ_max` and the
+//! balance rows `c·W`; a free root's momentum rows add `Σ w_pᵢ ∇pᵢ` (`root.rs`). With the rows' weights they
+//! add up to one scalar per node,
 //!
 //! ```text
 //!   φₖ(z, λ) = Σ_l ω_l τ_l(z, λ) + ω_W · W(z, λ),      ∇²_x(Σ wⱼcⱼ) = Σₖ Bₖᵀ ∇²φₖ Bₖ      (eq. 33)
@@ -50,6 +51,8 @@ pub(super) struct HessianWork {
     pub(super) positive: Vec<bool>,
     pub(super) sigma: [Vec<f64>; 2],
     pub(super) omega_w: [f64; 6],
+    /// The multipliers of a free root's momentum rows at the node (`root.rs`).
+    pub(super) root_w: [f64; 6],
     /// The node's unknowns: global column, and up to three (z index, coefficient) pairs.
     local: Vec<LocalUnknown>,
     /// `ω̂ = ω + ρ f(q, q̇)`, the torques' weights at the state of a pass (`node_gradient.rs`).
@@ -69,6 +72,7 @@ impl HessianWork {
             positive: vec![true; nv],
             sigma: [vec![0.0; nv], vec![0.0; nv]],
             omega_w: [0.0; 6],
+            root_w: [0.0; 6],
             local: Vec::with_capacity(4 * (nv + nl)),
             omega_hat: vec![0.0; nv],
         }
@@ -162,7 +166,7 @@ impl Transcription<'_> {
                 _ => {}
             }
         }
-        h.omega.iter().chain(&h.omega_w).chain(&h.rho).any(|v| *v != 0.0)
+        h.omega.iter().chain(&h.omega_w).chain(&h.rho).chain(&h.root_w).any(|v| *v != 0.0)
     }
 
     /// `∇²φₖ` into `hess.s`: forward differences of `∇φ` along `q` and `q̇`, the rest by structure.

@@ -28,8 +28,8 @@ pub enum RowKind {
     CentreOfPressure,
     /// Two solids at least their margin apart (mm).
     Distance,
-    /// A free root's generalised force, which must vanish (N or N·m).
-    RootForce,
+    /// A free body's momentum along a root joint, which must stay 0 (kg·m/s or kg·m²/s).
+    RootMomentum,
 }
 
 /// One constraint row measured in physical units.
@@ -58,8 +58,8 @@ impl Transcription<'_> {
         if kind == ConstraintKind::Equality && index < self.contact_eq0() {
             let name = self.root_row_name(index);
             let constraint = name.split(" at t = ").next().unwrap_or(&name).to_string();
-            let unit = self.force_unit(self.root.decode(index).1);
-            return Measured { constraint, kind: RowKind::RootForce, value: raw, limit: 0.0, excess: raw.abs(), unit };
+            let unit = self.momentum_unit(self.root.decode(index).1);
+            return Measured { constraint, kind: RowKind::RootMomentum, value: raw, limit: 0.0, excess: raw.abs(), unit };
         }
         if kind == ConstraintKind::Equality {
             let name = self.constraint_name(kind, index);
@@ -89,10 +89,10 @@ impl Transcription<'_> {
                 };
                 m(kind, q * to, limit * to, raw * to, unit)
             }
-            // On the dense grid a free root's force is a row pair ±τ ≤ 0: |τ| over, bound 0.
+            // On the dense grid a free root's momentum is a row pair ±p ≤ 0: |p| over, bound 0.
             IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) if self.spec.model.is_unactuated(i) => {
-                let tau = if matches!(row, IneqRow::UpperTorque(_)) { raw } else { -raw };
-                m(RowKind::RootForce, tau, 0.0, raw, self.force_unit(i))
+                let p = if matches!(row, IneqRow::UpperTorque(_)) { raw } else { -raw };
+                m(RowKind::RootMomentum, p, 0.0, raw, self.momentum_unit(i))
             }
             IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) => {
                 let upper = matches!(row, IneqRow::UpperTorque(_));

@@ -95,6 +95,8 @@ pub struct Transcription<'s> {
     goals: goals::Goals,
     /// A free root's zero-force rows, at one node per span (empty for a figure held by the world).
     root: root::RootRows,
+    /// A free body's momentum and joint torques (`root.rs`).
+    free: root::FreeBody,
     /// Per DOF `l`, the DOFs `τ_l` depends on ([`Model::torque_dofs`]): the support of its rows.
     torque_dofs: Vec<Vec<usize>>,
 }
@@ -276,7 +278,11 @@ impl<'s> Transcription<'s> {
             hess: hessian::HessianWork::new(nv, n_lambda),
             goals,
             root: root::RootRows::default(),
-            torque_dofs: (0..nv).map(|l| model.torque_dofs(l)).collect(),
+            free: root::FreeBody::new(model, n_lambda),
+            // A free body's joint torques depend on every DOF (`root.rs`).
+            torque_dofs: (0..nv)
+                .map(|l| if model.is_free_floating() { (0..nv).collect() } else { model.torque_dofs(l) })
+                .collect(),
         };
         t.terms = terms::TermWork::new(&t, 0);
         t

@@ -172,6 +172,8 @@ impl Transcription<'_> {
                 }
             }
         }
+        // A free body: its momentum, and the joints' torques with the root accelerating freely (`root.rs`).
+        self.free_body(jac);
         match spec.objective {
             Objective::Torque => {
                 for l in 0..nv {

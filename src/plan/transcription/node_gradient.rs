@@ -22,6 +22,9 @@ impl Transcription<'_> {
     pub(super) fn node_gradient(&mut self, out: &mut [f64], placed: bool) {
         let (spec, nv) = (self.spec, self.layout.nv);
         self.effective_weights();
+        if !self.free.dofs.is_empty() {
+            return self.node_gradient_of_rows(out);
+        }
         let h = &self.hess;
         let ow = &h.omega_w;
         let u0 = Motion::new(Vec3::new(ow[0], ow[1], ow[2]), Vec3::new(ow[3], ow[4], ow[5]));
@@ -59,6 +62,36 @@ impl Transcription<'_> {
             }
         }
         if spec.strength.is_some() {
+            self.add_strength_gradient(out);
+        }
+    }
+
+    /// `∇φ` from the node's torque rows (a free body's joint torques, `root.rs`, have no contracted pass):
+    /// `Σ_l ω̂_l ∇τ_l + Σᵢ w_pᵢ ∇pᵢ` (the root's momentum rows), plus the strength terms (a free figure has
+    /// no balance, `ω_W = 0`).
+    fn node_gradient_of_rows(&mut self, out: &mut [f64]) {
+        let (nv, nl) = (self.layout.nv, self.layout.n_lambda);
+        self.eval_state(true);
+        out.fill(0.0);
+        let (w, h) = (&self.work, &self.hess);
+        for l in (0..nv).filter(|&l| h.omega_hat[l] != 0.0) {
+            let o = h.omega_hat[l];
+            for c in 0..nv {
+                out[c] += o * w.dq[l * nv + c];
+                out[nv + c] += o * w.dv[l * nv + c];
+                out[2 * nv + c] += o * w.da[l * nv + c];
+            }
+            for m in 0..nl {
+                out[3 * nv + m] += o * w.dl[l * nl + m];
+            }
+        }
+        for (m, &wp) in h.root_w.iter().enumerate().filter(|(_, w)| **w != 0.0) {
+            for c in 0..nv {
+                out[c] += wp * self.free.dp_dq[m * nv + c];
+                out[nv + c] += wp * self.free.dp_dv[m * nv + c];
+            }
+        }
+        if self.spec.strength.is_some() {
             self.add_strength_gradient(out);
         }
     }

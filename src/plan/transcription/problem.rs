@@ -164,7 +164,7 @@ impl Problem for Transcription<'_> {
                     IneqRow::UpperPosition(i) => format!("upper position limit of joint \"{}\"", joint(i)),
                     IneqRow::LowerPosition(i) => format!("lower position limit of joint \"{}\"", joint(i)),
                     IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) if self.spec.model.is_unactuated(i) => {
-                        format!("zero force of the free root's unactuated joint \"{}\"", joint(i))
+                        format!("zero momentum along the free root's joint \"{}\"", joint(i))
                     }
                     IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) => {
                         let what = if self.limit_varies(i) { "strength" } else { "torque" };

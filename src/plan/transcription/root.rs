@@ -1,23 +1,44 @@
-//! A free-floating figure's unactuated root (`model::floating`): its six generalised forces are zero,
+//! A free-floating figure's unactuated root (`model::floating`): nothing holds the body, so its momentum
+//! stays what it was at the start — zero, the figure starting at rest — and its root moves as that dictates.
+//!
+//! **The root follows the momentum.** The six generalised momenta of the root's joints vanish,
 //!
 //! ```text
-//!   τᵢ(tₖ) = 0,   i ∈ root DOF,   tₖ one collocation node per knot span
+//!   pᵢ(tₖ) = (H(q) q̇)ᵢ = Sᵢ · h = 0,   i ∈ root DOF,   tₖ one collocation node per knot span
 //! ```
 //!
-//! as equality rows at **one node per knot span**, not at every quadrature node. Per root DOF the spline has
-//! as many free control points as knot spans (the start's two are fixed, the end's two share the solved
-//! goal posture): one row per span determines the root's motion from the joints' — the discrete counterpart
-//! of the root following its momentum — where rows at all four Gauss nodes ask four times more of the root's
-//! spline than it has freedom for (such plans did not converge). Between the collocation nodes the root
-//! forces are not exactly zero; the dense check between the nodes measures them in N and N·m against
-//! `plan::Tolerances::root_force_n` (1 by default), as OpenSim's residual reduction judges the residual
-//! forces of a recorded motion.
+//! (`h` the body's spatial momentum; every body lies below every root joint, so the six `pᵢ` are `h` seen
+//! along the root's six axes, and they vanish together with it away from the root's gimbal lock). They are
+//! equality rows at **one node per knot span**: per root DOF the spline has as many free control points as
+//! knot spans (the start's two are fixed, the end's two share the solved goal posture), so one row per span
+//! determines the root's velocity from the joints'. Between the rows the dense check measures the momentum
+//! in kg·m/s and kg·m²/s against `plan::Tolerances::root_momentum`. (Rows of the root's *force* `τᵢ = 0`,
+//! used before, are its momentum's derivative: a spline matches them only where they hold, and between
+//! them the forces of a brisk arm raise reached 40–230 N at N = 16–32.)
+//!
+//! **The joints' torques are the free body's.** The spline gives the root an acceleration `q̈_r` of its own;
+//! every node takes instead the joints' torques of the same `q, q̇, q̈_j` with the root accelerating freely,
+//! `q̈_r* = q̈_r − H_rr⁻¹ τ_r` (the root's force then 0), so that no force holding the root to its spline
+//! enters the objective, the limits or the reports (the root's own force is then 0):
+//!
+//! ```text
+//!   τ_j* = τ_j − G τ_r,   G = H_jr H_rr⁻¹
+//!   ∂τ_j*/∂x = ∂τ_j/∂x − G ∂τ_r/∂x − [x = q] (D_j − G D_r),   D = ∂(H(q) ỹ)/∂q,  ỹ = [H_rr⁻¹ τ_r; 0]
+//! ```
+//!
+//! (`D`, like `∂p/∂q = ∂(H(q) q̇)/∂q`, is the derivative of inverse dynamics at zero velocity and gravity:
+//! one more pass of the engine each.)
 //!
 //! The rows come first among the equality rows (the loop closures' check nodes are appended after theirs,
 //! so that warm multipliers keep their indices).
 
+use super::node::Derivatives;
 use super::Transcription;
+use crate::dynamics::{crba::crba, rnea_derivatives::rnea_derivatives};
+use crate::model::Model;
 use crate::solve::Evaluation;
+use crate::spatial::Vec3;
+use nalgebra::{Matrix6, Vector6};
 
 /// Where the root's rows are: its DOFs and the nodes they hold at.
 #[derive(Clone, Debug, Default)]
@@ -31,9 +52,9 @@ pub(super) struct RootRows {
 }
 
 impl RootRows {
-    /// The rows of `dofs` at both ends and at node `1 + nodes_per_span·s + ⌊(nodes_per_span − 1)/2⌋` of every
-    /// span `s` — the Gauss node just before the span's middle (node 0 is the start, the Gauss nodes follow
-    /// span by span, then the end).
+    /// The rows of `dofs` at node `1 + nodes_per_span·s + ⌊(nodes_per_span − 1)/2⌋` of every span `s` — the
+    /// Gauss node just before the span's middle (node 0 is the start, the Gauss nodes follow span by span,
+    /// then the end; at both ends the figure is at rest and its momentum 0 already).
     pub(super) fn one_per_span(dofs: Vec<usize>, n_spans: usize, nodes_per_span: usize, n_nodes: usize) -> Self {
         if dofs.is_empty() {
             return RootRows::default();
@@ -64,27 +85,152 @@ impl RootRows {
     }
 }
 
+/// A free body's momentum and joint torques at a node: scratch allocated once (empty for a held figure).
+#[derive(Clone, Debug, Default)]
+pub(super) struct FreeBody {
+    /// The root's six DOFs (empty: the figure is held).
+    pub(super) dofs: Vec<usize>,
+    /// `G = H_jr H_rr⁻¹`, `nv × 6` row-major (the root's rows unused).
+    g: Vec<f64>,
+    /// The momenta `pᵢ` of the root's DOFs, and their derivatives along `q` and `q̇` (`6 × nv` each: `H_r·`).
+    pub(super) p: [f64; 6],
+    pub(super) dp_dq: Vec<f64>,
+    pub(super) dp_dv: Vec<f64>,
+    /// `ỹ`, and zeros (`nv`, `n_λ`).
+    y_tilde: Vec<f64>,
+    zeros: Vec<f64>,
+    zeros_l: Vec<f64>,
+}
+
+impl FreeBody {
+    pub(super) fn new(model: &Model, nl: usize) -> Self {
+        let nv = model.nv();
+        let dofs: Vec<usize> = (0..nv).filter(|&i| model.is_unactuated(i)).collect();
+        if dofs.len() != 6 {
+            return FreeBody::default();
+        }
+        let z = vec![0.0; 6 * nv];
+        FreeBody {
+            dofs,
+            g: z.clone(),
+            p: [0.0; 6],
+            dp_dq: z.clone(),
+            dp_dv: z,
+            y_tilde: vec![0.0; nv],
+            zeros: vec![0.0; nv],
+            zeros_l: vec![0.0; nl],
+        }
+    }
+
+    /// Momentum row `m`'s derivatives with respect to the node's `q`, `q̇`, `q̈`, `λ̃`.
+    pub(super) fn momentum_row(&self, m: usize, nv: usize, nl: usize) -> Derivatives<'_> {
+        Derivatives {
+            q: &self.dp_dq[m * nv..(m + 1) * nv],
+            v: &self.dp_dv[m * nv..(m + 1) * nv],
+            a: &self.zeros,
+            lambda: (nl > 0).then_some(&self.zeros_l[..]),
+        }
+    }
+}
+
 impl Transcription<'_> {
-    /// The root's rows `h = τᵢ` of node `k` (after `eval_node(k)`), with their Jacobians (eq. 33).
-    pub(super) fn root_rows(&mut self, k: usize, want_jac: bool, out: &mut Evaluation) {
-        let Some(b) = self.root.block(k) else { return };
+    /// For a free body: the root's momenta into `self.free.p`, and the joints' torques in `self.work` (and
+    /// their derivatives when `jac`) replaced by the free body's, `τ_j* = τ_j − H_jr H_rr⁻¹ τ_r` (module
+    /// docs). `self.data.M` must hold `H(q)` when `jac`.
+    pub(super) fn free_body(&mut self, jac: bool) {
         let (nv, nl) = (self.layout.nv, self.layout.n_lambda);
-        let basis = self.nodes.basis[k];
-        for (m, &i) in self.root.dofs.iter().enumerate() {
-            let row = b * self.root.dofs.len() + m;
-            out.h[row] = self.work.tau[i];
-            if want_jac {
-                Self::chain_rule(&self.layout, &basis, 1.0, self.work.torque_row(i, nv, nl), out.jh.row_values_mut(row));
+        let (model, w, data, f) = (&self.spec.model, &mut self.work, &mut self.data, &mut self.free);
+        let r = &f.dofs;
+        if r.is_empty() {
+            return;
+        }
+        if !jac {
+            crba(model, data, &w.q);
+        }
+        // pᵢ = Hᵢ· q̇, ∂pᵢ/∂q̇ = Hᵢ·
+        for (m, &ra) in r.iter().enumerate() {
+            f.p[m] = (0..nv).map(|c| data.M[(ra, c)] * w.qd[c]).sum();
+            for c in 0..nv {
+                f.dp_dv[m * nv + c] = data.M[(ra, c)];
+            }
+        }
+        // H_rr y = τ_r
+        let h_rr = Matrix6::from_fn(|a, b| data.M[(r[a], r[b])]);
+        let Some(chol) = h_rr.cholesky() else { return };
+        let y = chol.solve(&Vector6::from_fn(|a, _| w.tau[r[a]]));
+        for j in (0..nv).filter(|j| !r.contains(j)) {
+            // G_j = H_jr H_rr⁻¹ (its row: H_rr⁻¹ H_rj, H_rr symmetric); τ_j* = τ_j − H_jr y
+            let g = chol.solve(&Vector6::from_fn(|a, _| data.M[(j, r[a])]));
+            f.g[j * 6..j * 6 + 6].copy_from_slice(g.as_slice());
+            w.tau[j] -= (0..6).map(|a| data.M[(j, r[a])] * y[a]).sum::<f64>();
+        }
+        // The free body's root force is 0 (its rows hold the momentum instead).
+        r.iter().for_each(|&ra| w.tau[ra] = 0.0);
+        if !jac {
+            return;
+        }
+        // ∂τ_j* = ∂τ_j − G ∂τ_r, for the q, q̇, q̈ and λ̃ columns
+        for j in (0..nv).filter(|j| !r.contains(j)) {
+            for (m, &ra) in r.iter().enumerate() {
+                let g = f.g[j * 6 + m];
+                for mat in [&mut w.dq, &mut w.dv, &mut w.da] {
+                    for c in 0..nv {
+                        mat[j * nv + c] -= g * mat[ra * nv + c];
+                    }
+                }
+                for c in 0..nl {
+                    w.dl[j * nl + c] -= g * w.dl[ra * nl + c];
+                }
+            }
+        }
+        for &ra in r {
+            for mat in [&mut w.dq, &mut w.dv, &mut w.da] {
+                mat[ra * nv..(ra + 1) * nv].fill(0.0);
+            }
+            w.dl[ra * nl..(ra + 1) * nl].fill(0.0);
+        }
+        // ∂p/∂q = ∂(H q̇)/∂q: inverse dynamics at velocity 0, acceleration q̇, no gravity
+        rnea_derivatives(model, data, &w.q, &f.zeros, &w.qd, &Vec3::zeros(), None);
+        for (m, &ra) in r.iter().enumerate() {
+            for c in 0..nv {
+                f.dp_dq[m * nv + c] = data.dtau_dq[(ra, c)];
+            }
+        }
+        // D = ∂(H ỹ)/∂q, and ∂τ_j*/∂q −= D_j − G D_r
+        f.y_tilde.fill(0.0);
+        for (m, &ra) in r.iter().enumerate() {
+            f.y_tilde[ra] = y[m];
+        }
+        rnea_derivatives(model, data, &w.q, &f.zeros, &f.y_tilde, &Vec3::zeros(), None);
+        for j in (0..nv).filter(|j| !r.contains(j)) {
+            for c in 0..nv {
+                let gd: f64 = r.iter().enumerate().map(|(m, &ra)| f.g[j * 6 + m] * data.dtau_dq[(ra, c)]).sum();
+                w.dq[j * nv + c] -= data.dtau_dq[(j, c)] - gd;
             }
         }
     }
 
-    /// The Hessian weights `ω` of node `k` gain the root rows' multipliers `w_h` (`∇²(w τᵢ)`).
+    /// The root's rows `h = pᵢ` of node `k` (after `eval_node(k)`), with their Jacobians (eq. 33).
+    pub(super) fn root_rows(&mut self, k: usize, want_jac: bool, out: &mut Evaluation) {
+        let Some(b) = self.root.block(k) else { return };
+        let (nv, nl) = (self.layout.nv, self.layout.n_lambda);
+        let basis = self.nodes.basis[k];
+        for m in 0..self.root.dofs.len() {
+            let row = b * self.root.dofs.len() + m;
+            out.h[row] = self.free.p[m];
+            if want_jac {
+                Self::chain_rule(&self.layout, &basis, 1.0, self.free.momentum_row(m, nv, nl), out.jh.row_values_mut(row));
+            }
+        }
+    }
+
+    /// The root rows' multipliers `w_h` at node `k` into `hess.root_w` (`∇²(w · p)`).
     pub(super) fn root_weights(&mut self, k: usize, w_h: &[f64]) {
+        self.hess.root_w = [0.0; 6];
         let Some(b) = self.root.block(k) else { return };
         let per = self.root.dofs.len();
-        for (m, &i) in self.root.dofs.iter().enumerate() {
-            self.hess.omega[i] += w_h[b * per + m];
+        for m in 0..per {
+            self.hess.root_w[m] = w_h[b * per + m];
         }
     }
 
@@ -92,7 +238,7 @@ impl Transcription<'_> {
     pub(super) fn root_row_name(&self, index: usize) -> String {
         let (k, i) = self.root.decode(index);
         let joint = &self.spec.model.joints[i + 1].name;
-        format!("zero force of the free root's unactuated joint \"{joint}\" at t = {:.3} s", self.nodes.t[k])
+        format!("zero momentum along the free root's joint \"{joint}\" at t = {:.3} s", self.nodes.t[k])
     }
 
     /// The unit of DOF `i`'s generalised force.
@@ -101,6 +247,15 @@ impl Transcription<'_> {
             "N"
         } else {
             "N·m"
+        }
+    }
+
+    /// The unit of DOF `i`'s generalised momentum.
+    pub(super) fn momentum_unit(&self, i: usize) -> &'static str {
+        if self.spec.model.joints[i + 1].kind == crate::model::JointKind::Prismatic {
+            "kg·m/s"
+        } else {
+            "kg·m²/s"
         }
     }
 }
