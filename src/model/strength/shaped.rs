@@ -67,6 +67,16 @@ const TSUNODA_1993_POINT: (f64, f64) = (105.0, 0.8);
 /// Chaffin et al. 1999, Table 4.5: men's torso extension strength (N·m) at 20°, 40°, 60° of flexion.
 const CHAFFIN_1999_EXTENSION: [(f64, f64); 3] = [(20.0, 288.0), (40.0, 232.0), (60.0, 171.0)];
 
+/// The source's own peak strength (N·m, one joint of a man) where it gives one: lumbar extension, the
+/// peak of the Gaussian through Chaffin et al.'s three values; `None` elsewhere (the model's effort limit).
+pub fn source_peak(joint: usize, flexion: bool) -> Option<f64> {
+    let (a, ta) = CHAFFIN_1999_EXTENSION[0];
+    let (peak_angle, width) = gaussian_through(CHAFFIN_1999_EXTENSION);
+    // T(θ) = T* exp(−(θ − θ*)²/(2σ²)) through (20°, 288 N·m): T* = 288 exp((20° − θ*)²/(2σ²))
+    let d = a.to_radians() - peak_angle;
+    (joint == 0 && !flexion).then(|| ta * (d * d / (2.0 * width * width)).exp())
+}
+
 /// The shape of `joint` ([`SHAPED_JOINTS`]) in direction `flexion` (false: extension), with its source.
 pub fn shape(joint: usize, flexion: bool) -> (Shape, &'static str) {
     let [peak, width, omega_max, half] = GYMNAST[joint][usize::from(flexion)];

@@ -5,6 +5,7 @@
 
 use super::schema::{StrengthSpec, TaskFile};
 use crate::error::{Error, Result};
+use crate::model::strength::shaped::source_peak as shaped_peak;
 use crate::model::strength::{normal_quantile, Source, Strengths, ANDERSON_G, ANDERSON_JOINTS, DEFAULT_CV, SHAPED_JOINTS};
 use crate::model::Model;
 
@@ -170,7 +171,11 @@ fn default_source(file: &TaskFile, model: &Model, i: usize, subject: Option<f64>
     let usable = |v: f64| v.is_finite() && v > 0.0;
     let shaped = SHAPED_JOINTS.iter().position(|j| *j == base).filter(|_| subject.is_some());
     if let Some(k) = shaped.filter(|_| usable(positive) && usable(negative) && !file.output.strength.contains_key(&joint.name)) {
-        // +q is flexion at a built-in human: the peaks [extension, flexion] are the limits along −q, +q.
+        // +q is flexion at a built-in human: the peaks [extension, flexion] are the limits along −q, +q,
+        // or the source's own (lumbar extension, Chaffin et al.) × mass/81 kg like the effort limits.
+        let mass = file.model.mass.unwrap_or(crate::model::human::REFERENCE_MASS_KG);
+        let own = |flexion: bool| shaped_peak(k, flexion).map(|p| p * mass / crate::model::human::REFERENCE_MASS_KG);
+        let (negative, positive) = (own(false).unwrap_or(negative), own(true).unwrap_or(positive));
         let label = format!("{} angle and speed factors × peak {negative:.0}/{positive:.0} N·m (effort limit)", SHAPED_JOINTS[k]);
         return Source::Shaped { joint: k, peaks: [negative, positive], flexion_sign: 1.0, label };
     }
