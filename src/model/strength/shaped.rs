@@ -54,6 +54,7 @@ pub const SHAPED_JOINTS: [&str; 3] = ["lumbar", "shoulder", "elbow"];
 
 /// Millard's Gymnast rows (RBDL `GymnastWholeBody`): `[θ*, σ, ω_max, t]` per `[joint][extension, flexion]`,
 /// joints as [`SHAPED_JOINTS`].
+#[allow(clippy::approx_constant)] // 6.28319: the source's printed lumbar-flexion width, kept as printed
 const GYMNAST: [[[f64; 4]; 2]; 3] = [
     [[1.5506, 1.14543, 7.98695, 0.150907], [0.0, 6.28319, 19.2310, 0.150907]],
     [[2.14675, 1.83085, 16.249, 0.250134], [0.890118, 1.2898, 19.0764, 0.249656]],
