@@ -11,7 +11,8 @@
 //! torque's own direction (rad/s, concentric +; eccentric taken at the isometric strength, v = 1). `v` is
 //! the Hill hyperbola through the three points the source's velocity curve is built on: v(0) = 1,
 //! v(ω_max/2) = t, v(ω_max) = 0. The peak `S_peak` is the model's effort limit in that direction (Table I's
-//! constants, docs/human.md: an estimate), not the sources' (one elite gymnast's, below).
+//! constants, docs/human.md: an estimate), not the Gymnast set's (one elite athlete's, below) — except
+//! lumbar extension, whose peak is Chaffin et al.'s ([`source_peak`], × mass/81 kg by the caller).
 //!
 //! Sources, per direction (`Shape::source`):
 //! - Millard's Gymnast data set (`GymnastWholeBody` in RBDL's muscle addon, `Millard2016TorqueMuscle.cc`,
