@@ -326,11 +326,12 @@ fn sources(text: &str, joints: &[&str]) -> Vec<Source> {
 #[test]
 fn contact_and_unactuated_dofs_have_no_strength_and_the_whole_bodys_flexion_axes_get_the_surfaces() {
     // The push-up's toe_pivot (the feet rolling on the floor) and the chin-up's grip are not joints a
-    // person is strong at: no strength, where the anatomical ankle has its surface and the shoulder its limit.
+    // person is strong at: no strength, where the anatomical ankle has its surface and the shoulder its shape
+    // (its effort limit as the peak, `model::strength::shaped`).
     let push_up = std::fs::read_to_string(example("push_up")).unwrap();
     let s = sources(&push_up, &["toe_pivot", "ankle", "shoulder"]);
     assert_eq!(s[0], Source::None, "toe_pivot: {:?}", s[0]);
-    assert!(matches!(s[1], Source::Anderson { joint: 2, .. }) && matches!(s[2], Source::Constant { .. }), "{s:?}");
+    assert!(matches!(s[1], Source::Anderson { joint: 2, .. }) && matches!(s[2], Source::Shaped { joint: 1, .. }), "{s:?}");
     let chin_up = std::fs::read_to_string(example("chin_up_earth")).unwrap();
     assert_eq!(sources(&chin_up, &["grip"]), [Source::None]);
     // The same DOF named in [ergonomics.strength] gets what the task gives.

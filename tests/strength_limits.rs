@@ -89,7 +89,8 @@ fn strength_rows_and_residuals_match_finite_differences() {
     let spec = &task.spec;
     let strength = spec.strength.as_ref().expect("strength limits on");
     let varying: Vec<usize> = (0..spec.model.nv()).filter(|&i| strength.varies(i)).collect();
-    assert_eq!(varying.len(), 3, "the hip, knee and ankle surfaces");
+    // Anderson's surfaces at hip, knee and ankle; the shaped strengths at lumbar, shoulder and elbow.
+    assert_eq!(varying.len(), 6, "the hip, knee, ankle, lumbar, shoulder and elbow strengths");
     jacobians_match_differences(spec, 51, 0.6);
     second_order_matches_differences(spec, 52, 0.6);
     // The differences have teeth: the same rows without the surfaces (constant limits) differ from these by

@@ -13,8 +13,14 @@
 //! taken at the isometric strength (multiplier 1: conservative, eccentric strength is higher). The angle
 //! and velocity factors are floored at 0.1 (outside the measured ranges the fit falls to zero).
 //!
+//! The lumbar spine, shoulder flexion/extension and elbow: a peak per direction times an angle and a
+//! velocity factor from published relations ([`shaped`]).
+//!
 //! The population's strength at percentile `p`: `T_p = T (1 + z_p σ/T)`, `z_p = Φ⁻¹(p/100)`, `σ/T`
 //! Anderson's coefficient of variation of C₁ at the surfaces and the task's `population_cv` elsewhere.
+
+pub mod shaped;
+pub use shaped::{Shape, SHAPED_JOINTS};
 
 /// Anderson's normalising gravity (m/s²).
 pub const ANDERSON_G: f64 = 9.81;
@@ -138,6 +144,17 @@ pub enum Source {
         /// Its description.
         label: String,
     },
+    /// A peak per direction times [`shaped`]'s angle and velocity factors.
+    Shaped {
+        /// Which joint of [`SHAPED_JOINTS`] (0 lumbar, 1 shoulder, 2 elbow).
+        joint: usize,
+        /// The peak strength (N·m, every limb it stands for): `[extension, flexion]`.
+        peaks: [f64; 2],
+        /// +1 when `+q` is flexion, −1 otherwise.
+        flexion_sign: f64,
+        /// Its description.
+        label: String,
+    },
     /// The same strength whatever the posture: along `+axis`, along `−axis` (N·m).
     Constant {
         /// Along `+axis`.
@@ -167,6 +184,15 @@ impl Source {
                 let k = surface.c[0] * scale;
                 Some((Sloped { value: k * shape.value, d1: k * shape.d1 * s, d2: k * shape.d2 * dw }, surface.cv()))
             }
+            Source::Shaped { joint, peaks, flexion_sign: s, .. } => {
+                let flexing = (*s > 0.0) == positive;
+                let (shape, _) = shaped::shape(*joint, flexing);
+                // θ = s q, ω = ±s q̇ (+ when the flexors act), as for Anderson's surfaces
+                let dw = if flexing { *s } else { -*s };
+                let f = shape.sloped(s * q, dw * qd, smoothing);
+                let k = peaks[usize::from(flexing)];
+                Some((Sloped { value: k * f.value, d1: k * f.d1 * s, d2: k * f.d2 * dw }, cv))
+            }
             Source::Constant { positive: p, negative: n, .. } => {
                 Some((Sloped { value: if positive { *p } else { *n }, d1: 0.0, d2: 0.0 }, cv))
             }
@@ -194,11 +220,17 @@ impl Source {
     /// reversal, `q̇ = 0, ±½ε, ±ε, ±2ε` (`smoothing` ε, where the velocity factor meets the eccentric
     /// branch). None for a constant strength.
     pub fn corner_levels(&self, smoothing: f64) -> (Vec<f64>, Vec<f64>) {
-        let Source::Anderson { joint, flexion_sign: s, .. } = self else { return (vec![], vec![]) };
+        let corners: Vec<([f64; 2], Option<f64>)> = match self {
+            Source::Anderson { joint, .. } => ANDERSON_2007_MEN_18_25[*joint].iter().map(Surface::corners).collect(),
+            Source::Shaped { joint, .. } => {
+                [false, true].iter().map(|&f| shaped::shape(*joint, f).0.corners()).map(|(a, w)| (a, Some(w))).collect()
+            }
+            _ => return (vec![], vec![]),
+        };
+        let s = self.flexion_sign();
         let mut speeds: Vec<f64> = [0.0, 0.5, -0.5, 1.0, -1.0, 2.0, -2.0].iter().map(|k| k * smoothing).collect();
         let mut angles = Vec::new();
-        for surface in &ANDERSON_2007_MEN_18_25[*joint] {
-            let (thetas, omega) = surface.corners();
+        for (thetas, omega) in corners {
             // θ = s q, ω = ±s q̇
             angles.extend(thetas.map(|theta| s * theta));
             speeds.extend(omega.into_iter().flat_map(|w| [w, -w]));
@@ -206,10 +238,18 @@ impl Source {
         (angles, speeds)
     }
 
+    /// +1 when `+q` is flexion, −1 otherwise (+1 for a source without directions).
+    fn flexion_sign(&self) -> f64 {
+        match self {
+            Source::Anderson { flexion_sign, .. } | Source::Shaped { flexion_sign, .. } => *flexion_sign,
+            _ => 1.0,
+        }
+    }
+
     /// Its description.
     pub fn label(&self) -> String {
         match self {
-            Source::Anderson { label, .. } | Source::Constant { label, .. } => label.clone(),
+            Source::Anderson { label, .. } | Source::Shaped { label, .. } | Source::Constant { label, .. } => label.clone(),
             Source::None => "none".into(),
         }
     }
@@ -218,7 +258,7 @@ impl Source {
     pub fn cvs(&self, cv: f64) -> Vec<f64> {
         match self {
             Source::Anderson { joint, .. } => ANDERSON_2007_MEN_18_25[*joint].iter().map(Surface::cv).collect(),
-            Source::Constant { .. } => vec![cv],
+            Source::Shaped { .. } | Source::Constant { .. } => vec![cv],
             Source::None => vec![],
         }
     }
@@ -248,7 +288,7 @@ impl Strengths {
 
     /// Whether joint `i`'s strength depends on its angle and velocity.
     pub fn varies(&self, i: usize) -> bool {
-        matches!(self.sources.get(i), Some(Source::Anderson { .. }))
+        matches!(self.sources.get(i), Some(Source::Anderson { .. } | Source::Shaped { .. }))
     }
 }
 

@@ -5,7 +5,8 @@
 
 use super::schema::{StrengthSpec, TaskFile};
 use crate::error::{Error, Result};
-use crate::model::strength::{normal_quantile, Source, Strengths, ANDERSON_G, ANDERSON_JOINTS, DEFAULT_CV};
+use crate::model::strength::shaped::source_peak as shaped_peak;
+use crate::model::strength::{normal_quantile, Source, Strengths, ANDERSON_G, ANDERSON_JOINTS, DEFAULT_CV, SHAPED_JOINTS};
 use crate::model::Model;
 
 /// `ergonomics.population_cv` (default 0.22), checked to lie in (0, 1).
@@ -153,7 +154,9 @@ fn anatomical(name: &str) -> (&str, u32) {
 
 /// A joint's strength unless the task names one: none for what is not an anatomical joint (a free
 /// root's unactuated DOFs, the built-in humans' contact DOFs, any joint whose effort limit is 0), the
-/// Anderson surface at a built-in human's hips, knees and ankles, else the constant limits.
+/// Anderson surface at a built-in human's hips, knees and ankles, the shaped strength (`model::strength::
+/// shaped`, peaks the effort limits) at its lumbar, shoulder-flexion and elbow-flexion axes, else the
+/// constant limits.
 fn default_source(file: &TaskFile, model: &Model, i: usize, subject: Option<f64>) -> Source {
     let joint = &model.joints[i + 1];
     let contact = file.model.human.is_some() && crate::model::human::CONTACT_DOFS.contains(&joint.name.as_str());
@@ -163,6 +166,18 @@ fn default_source(file: &TaskFile, model: &Model, i: usize, subject: Option<f64>
     let (base, limbs) = anatomical(&joint.name);
     if let (Some(mgh), Some(k)) = (subject, ANDERSON_JOINTS.iter().position(|j| *j == base)) {
         return anderson(k, limbs, mgh, 1.0);
+    }
+    let (positive, negative) = (joint.limits.effort_toward(true), joint.limits.effort_toward(false));
+    let usable = |v: f64| v.is_finite() && v > 0.0;
+    let shaped = SHAPED_JOINTS.iter().position(|j| *j == base).filter(|_| subject.is_some());
+    if let Some(k) = shaped.filter(|_| usable(positive) && usable(negative) && !file.output.strength.contains_key(&joint.name)) {
+        // +q is flexion at a built-in human: the peaks [extension, flexion] are the limits along −q, +q,
+        // or the source's own (lumbar extension, Chaffin et al.) × mass/81 kg like the effort limits.
+        let mass = file.model.mass.unwrap_or(crate::model::human::REFERENCE_MASS_KG);
+        let own = |flexion: bool| shaped_peak(k, flexion).map(|p| p * mass / crate::model::human::REFERENCE_MASS_KG);
+        let (negative, positive) = (own(false).unwrap_or(negative), own(true).unwrap_or(positive));
+        let label = format!("{} angle and speed factors × peak {negative:.0}/{positive:.0} N·m (effort limit)", SHAPED_JOINTS[k]);
+        return Source::Shaped { joint: k, peaks: [negative, positive], flexion_sign: 1.0, label };
     }
     let (positive, negative, label) = match file.output.strength.get(&joint.name) {
         Some(&s) => (s, s, "constant (output.strength)"),
