@@ -216,7 +216,7 @@ fn joint_ergonomics(model: &Model, samples: &[SampleRecord], i: usize, overrides
     let (peak_index, peak_abs_torque) = peak_by(samples, |s| s.tau[i].abs());
     let finite = |l: f64| l.is_finite().then_some(l);
     let (limits, strength_source) = match overrides.get(&joint.name) {
-        // A free root's forces are held at zero, not against a strength: their peak is the residual.
+        // A free root's forces are zero (the joints' torques are the free body's), not held against a strength.
         _ if model.is_unactuated(i) => ((None, None), None),
         Some(&l) => ((Some(l), Some(l)), Some("override")),
         None if joint.limits.effort_toward(true).is_finite() || joint.limits.effort_toward(false).is_finite() => {

@@ -128,7 +128,7 @@ impl<'s> Transcription<'s> {
         append(&mut nodes, spline.grid(&spec.check_nodes.limits)?);
         append(&mut contact_nodes, spline.grid(&spec.check_nodes.closures)?);
         let mut t = Self::with_nodes(spec, spline, nodes, contact_nodes);
-        // A free root's forces: equality rows at one node per span instead of limit rows at every node.
+        // A free root's momenta: equality rows at one node per span instead of limit rows at every node.
         let unactuated: Vec<usize> = (0..spec.model.nv()).filter(|&i| spec.model.is_unactuated(i)).collect();
         let n_spans = t.spline.n_spans();
         t.root = root::RootRows::one_per_span(unactuated, n_spans, spec.nodes_per_span, t.nodes.t.len());

@@ -118,7 +118,8 @@ impl Problem for Transcription<'_> {
             .collect();
         // Goals in metres (like the contacts), their orientations as cosines.
         let goals = std::iter::repeat_n(1.0, self.goals.n_rows());
-        // A free root's forces by the figure's weight (N, N·m per m), like its limit rows; closures in metres.
+        // A free root's momenta by the figure's weight, as its force rows were (kg·m/s against N: measured, a
+        // mass scale was not tried); closures in metres.
         let root = std::iter::repeat_n(self.total_weight.max(1.0), self.root.n_rows());
         let eq = root.chain(std::iter::repeat_n(1.0, self.n_contact_eq())).collect();
         Scales { eq, ineq: (0..nn).flat_map(|_| per_node.iter().copied()).chain(goals).collect() }
