@@ -234,6 +234,30 @@ fn free_root_rows_match_finite_differences() {
     second_order_matches_differences(spec, 42, 0.3);
 }
 
+/// A free-floating figure held by its hands on a rail under gravity: its momentum is not conserved (the
+/// rail and gravity act on it), so the root's rows are its forces `τ_r = 0` of the spline's motion — with
+/// exact Jacobians and second-order terms, the joints' torques still the free body's.
+#[test]
+fn free_root_held_by_a_contact_has_force_rows_that_match_finite_differences() {
+    let text = "[model]\nhuman = \"sagittal\"\nroot = \"free\"\n\n[motion]\nduration = 1.0\nstart = {}\n\
+        goal = {}\n\n[[constraints.contact]]\nframe = \"hands\"\ntype = \"point\"\n\n\
+        [discretization]\ncontrol_points = 7\n";
+    let task = mintorque::plan::task::Task::parse(text, std::path::Path::new("held.toml")).unwrap();
+    let spec = &task.spec;
+    let mut problem = Transcription::new(spec).unwrap();
+    let dims = problem.dims();
+    let mut eval = Evaluation::new(dims, &problem.jacobian_patterns()).unwrap();
+    let x = mintorque::plan::initial_x(spec, &mut problem).unwrap();
+    problem.evaluate(&x, false, &mut eval).unwrap();
+    // The guess holds the body still, its weight not yet on the rail: the root's force rows are far from 0
+    // (a momentum row would be 0 there, the body being still).
+    let root_rows = 6 * (spec.n_ctrl - 3);
+    assert!(eval.h[..root_rows].iter().any(|h| h.abs() > 1.0), "{:?}", &eval.h[..root_rows]);
+    assert!(problem.constraint_name(mintorque::solve::ConstraintKind::Equality, 0).contains("zero force"));
+    jacobians_match_differences(spec, 44, 0.3);
+    second_order_matches_differences(spec, 45, 0.3);
+}
+
 /// Per-direction effort limits: the upper torque row is `τ − τ⁺`, the lower `−τ − τ⁻`, each with its own
 /// bound (and scale), and the check nodes add one node's rows each.
 #[test]

@@ -36,8 +36,11 @@ pub struct Tolerances {
     /// Two solids closer than their margin (mm, default 1: a tenth of the usual 1–2 cm margin).
     pub distance_mm: f64,
     /// A free body's momentum along a root joint between its collocation nodes (kg·m/s or kg·m²/s, default
-    /// 0.05: a 75-kg body drifting 0.7 mm/s).
+    /// 1: an 81-kg body drifting 12 mm/s, or turning about 4°/s, for the hundredths of a second it lasts).
     pub root_momentum: f64,
+    /// A free root's force (N) or moment (N·m) between its collocation nodes when something holds or pushes
+    /// the body (a contact, gravity; default 1: 0.1 kg-weight).
+    pub root_force_n: f64,
 }
 
 impl Default for Tolerances {
@@ -52,6 +55,7 @@ impl Default for Tolerances {
             centre_of_pressure_mm: 2.0,
             distance_mm: 1.0,
             root_momentum: 1.0,
+            root_force_n: 1.0,
         }
     }
 }
@@ -68,6 +72,7 @@ impl Tolerances {
             RowKind::CentreOfPressure => self.centre_of_pressure_mm,
             RowKind::Distance => self.distance_mm,
             RowKind::RootMomentum => self.root_momentum,
+            RowKind::RootForce => self.root_force_n,
         }
     }
 
@@ -83,6 +88,7 @@ impl Tolerances {
             ("centre_of_pressure_mm", self.centre_of_pressure_mm),
             ("distance_mm", self.distance_mm),
             ("root_momentum", self.root_momentum),
+            ("root_force_n", self.root_force_n),
         ];
         for (name, v) in all {
             if !(v.is_finite() && v >= 0.0) {
@@ -219,7 +225,10 @@ pub(super) fn check_near(
         // Missed: excess > tolerance (a NaN fails too); over by less: near.
         if m.excess > tolerance || m.excess.is_nan() {
             found.add(group, t, span, m, tolerance);
-        } else if kind == ConstraintKind::Inequality && m.kind != RowKind::RootMomentum && m.excess > 0.0 {
+        } else if kind == ConstraintKind::Inequality
+            && !matches!(m.kind, RowKind::RootMomentum | RowKind::RootForce)
+            && m.excess > 0.0
+        {
             near.add(group, t, span, m, tolerance);
         }
     }
@@ -322,7 +331,7 @@ pub(super) fn more_nodes<'a>(violations: impl IntoIterator<Item = &'a NodeViolat
     let mut more = CheckNodes::default();
     // A free root's momenta hold at their collocation nodes only (more rows would over-determine its spline):
     // check nodes do not help them, more control points do.
-    for v in violations.into_iter().filter(|v| v.kind != RowKind::RootMomentum) {
+    for v in violations.into_iter().filter(|v| !matches!(v.kind, RowKind::RootMomentum | RowKind::RootForce)) {
         let closure = v.kind == RowKind::Closure;
         for &(_, t, _) in &v.spans {
             let (have, list) = if closure { (&nodes.closures, &mut more.closures) } else { (&nodes.limits, &mut more.limits) };

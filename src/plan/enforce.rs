@@ -105,8 +105,10 @@ pub(super) fn enforce(
 /// What to do when a free root's momenta are missed between their collocation nodes: check nodes cannot
 /// hold them (`between::more_nodes`), a finer spline can.
 fn root_hint(violations: &[NodeViolation], n_ctrl: usize) -> String {
-    if violations.iter().any(|v| v.kind == crate::plan::transcription::RowKind::RootMomentum) {
-        format!("; the free root's momenta between its collocation nodes fall with more control points: raise discretization.control_points from {n_ctrl}")
+    if violations.iter().any(|v| {
+        matches!(v.kind, crate::plan::transcription::RowKind::RootMomentum | crate::plan::transcription::RowKind::RootForce)
+    }) {
+        format!("; the free root's momenta (or forces) between its collocation nodes fall with more control points: raise discretization.control_points from {n_ctrl}")
     } else {
         String::new()
     }

@@ -125,13 +125,13 @@ impl Transcription<'_> {
                     }
                 }
                 IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) if self.spec.model.is_unactuated(i) => {
-                    // On the dense grid a free root's momentum: ±pᵢ ≤ 0 (`root.rs`)
+                    // On the dense grid a free root's row (momentum or force): ±pᵢ ≤ 0 (`root.rs`)
                     let sign = if matches!(row, IneqRow::UpperTorque(_)) { 1.0 } else { -1.0 };
                     let m = self.free.dofs.iter().position(|&d| d == i).expect("a free root's DOF");
-                    out.g[gi] = sign * self.free.p[m];
+                    out.g[gi] = sign * self.free.row[m];
                     if want_jac {
                         let vals = out.jg.row_values_mut(gi);
-                        let d = self.free.momentum_row(m, nv, nl);
+                        let d = self.free.row_derivatives(m, nv, nl);
                         Self::chain_rule_on(&self.layout, &basis, sign, d, &self.torque_dofs[i], vals);
                     }
                 }
@@ -214,7 +214,12 @@ impl Transcription<'_> {
     pub fn violation_in_units(&self, kind: ConstraintKind, index: usize, raw: f64) -> String {
         if kind == ConstraintKind::Equality && index < self.contact_eq0() {
             let (_, i) = self.root.decode(index);
-            return format!("{} {} of momentum along a free root's joint (must be 0)", num(raw.abs()), self.momentum_unit(i));
+            let what = if self.free.conserved { "momentum" } else { "force" };
+            return format!(
+                "{} {} of {what} along a free root's joint (must be 0)",
+                num(raw.abs()),
+                self.free.unit(&self.spec.model, i)
+            );
         }
         if kind == ConstraintKind::Equality {
             return format!("{} mm off its target", num(raw.abs() * 1e3));

@@ -30,6 +30,9 @@ pub enum RowKind {
     Distance,
     /// A free body's momentum along a root joint, which must stay 0 (kg·m/s or kg·m²/s).
     RootMomentum,
+    /// A free root's force of the spline's motion, held or pushed (a contact, gravity), which must vanish
+    /// (N or N·m).
+    RootForce,
 }
 
 /// One constraint row measured in physical units.
@@ -51,6 +54,15 @@ pub struct Measured {
 }
 
 impl Transcription<'_> {
+    /// The kind of a free root's rows: momentum when it is conserved, force otherwise (`root.rs`).
+    fn root_kind(&self) -> RowKind {
+        if self.free.conserved {
+            RowKind::RootMomentum
+        } else {
+            RowKind::RootForce
+        }
+    }
+
     /// Row `index` of `kind` with raw value `raw` (`h`, or `g` with `g ≤ 0` holding), in physical units.
     /// `g` is the whole inequality vector of the same evaluation: a centre-of-pressure row is a moment,
     /// `f_z` times the distance beyond the edge, and `f_z` is read from the node's load row.
@@ -58,8 +70,8 @@ impl Transcription<'_> {
         if kind == ConstraintKind::Equality && index < self.contact_eq0() {
             let name = self.root_row_name(index);
             let constraint = name.split(" at t = ").next().unwrap_or(&name).to_string();
-            let unit = self.momentum_unit(self.root.decode(index).1);
-            return Measured { constraint, kind: RowKind::RootMomentum, value: raw, limit: 0.0, excess: raw.abs(), unit };
+            let unit = self.free.unit(&self.spec.model, self.root.decode(index).1);
+            return Measured { constraint, kind: self.root_kind(), value: raw, limit: 0.0, excess: raw.abs(), unit };
         }
         if kind == ConstraintKind::Equality {
             let name = self.constraint_name(kind, index);
@@ -89,10 +101,10 @@ impl Transcription<'_> {
                 };
                 m(kind, q * to, limit * to, raw * to, unit)
             }
-            // On the dense grid a free root's momentum is a row pair ±p ≤ 0: |p| over, bound 0.
+            // On the dense grid a free root's momentum (or force) is a row pair ±p ≤ 0: |p| over, bound 0.
             IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) if self.spec.model.is_unactuated(i) => {
                 let p = if matches!(row, IneqRow::UpperTorque(_)) { raw } else { -raw };
-                m(RowKind::RootMomentum, p, 0.0, raw, self.momentum_unit(i))
+                m(self.root_kind(), p, 0.0, raw, self.free.unit(&self.spec.model, i))
             }
             IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) => {
                 let upper = matches!(row, IneqRow::UpperTorque(_));

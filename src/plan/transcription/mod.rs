@@ -278,7 +278,7 @@ impl<'s> Transcription<'s> {
             hess: hessian::HessianWork::new(nv, n_lambda),
             goals,
             root: root::RootRows::default(),
-            free: root::FreeBody::new(model, n_lambda),
+            free: root::FreeBody::new(spec, n_lambda),
             // A free body's joint torques depend on every DOF (`root.rs`).
             torque_dofs: (0..nv)
                 .map(|l| if model.is_free_floating() { (0..nv).collect() } else { model.torque_dofs(l) })

@@ -67,7 +67,7 @@ impl Transcription<'_> {
     }
 
     /// `∇φ` from the node's torque rows (a free body's joint torques, `root.rs`, have no contracted pass):
-    /// `Σ_l ω̂_l ∇τ_l + Σᵢ w_pᵢ ∇pᵢ` (the root's momentum rows), plus the strength terms (a free figure has
+    /// `Σ_l ω̂_l ∇τ_l + Σᵢ w_pᵢ ∇pᵢ` (the root's rows, momenta or forces), plus the strength terms (a free figure has
     /// no balance, `ω_W = 0`).
     fn node_gradient_of_rows(&mut self, out: &mut [f64]) {
         let (nv, nl) = (self.layout.nv, self.layout.n_lambda);
@@ -86,9 +86,14 @@ impl Transcription<'_> {
             }
         }
         for (m, &wp) in h.root_w.iter().enumerate().filter(|(_, w)| **w != 0.0) {
+            let d = self.free.row_derivatives(m, nv, nl);
             for c in 0..nv {
-                out[c] += wp * self.free.dp_dq[m * nv + c];
-                out[nv + c] += wp * self.free.dp_dv[m * nv + c];
+                out[c] += wp * d.q[c];
+                out[nv + c] += wp * d.v[c];
+                out[2 * nv + c] += wp * d.a[c];
+            }
+            for (c, v) in d.lambda.into_iter().flatten().enumerate() {
+                out[3 * nv + c] += wp * v;
             }
         }
         if self.spec.strength.is_some() {

@@ -29,11 +29,15 @@
 //! (`D`, like `∂p/∂q = ∂(H(q) q̇)/∂q`, is the derivative of inverse dynamics at zero velocity and gravity:
 //! one more pass of the engine each.)
 //!
+//! **Held or pushed** — a contact (a hand on a rail), gravity, a load — the momentum is not conserved, and
+//! the rows are the root's forces `τᵢ(tₖ) = 0` of the spline's motion instead, measured between the nodes
+//! against `root_force_n`.
+//!
 //! The rows come first among the equality rows (the loop closures' check nodes are appended after theirs,
 //! so that warm multipliers keep their indices).
 
 use super::node::Derivatives;
-use super::Transcription;
+use super::{Spec, Transcription};
 use crate::dynamics::{crba::crba, rnea_derivatives::rnea_derivatives};
 use crate::model::Model;
 use crate::solve::Evaluation;
@@ -85,91 +89,143 @@ impl RootRows {
     }
 }
 
-/// A free body's momentum and joint torques at a node: scratch allocated once (empty for a held figure).
+/// A free body's root rows and joint torques at a node: scratch allocated once (empty for a held figure).
 #[derive(Clone, Debug, Default)]
 pub(super) struct FreeBody {
     /// The root's six DOFs (empty: the figure is held).
     pub(super) dofs: Vec<usize>,
+    /// Whether the momentum is conserved (no contact, no gravity, no load): the rows are then the momenta
+    /// `pᵢ`; otherwise the root's forces `τᵢ` of the spline's motion (a hand on a rail, gravity).
+    pub(super) conserved: bool,
     /// `G = H_jr H_rr⁻¹`, `nv × 6` row-major (the root's rows unused).
     g: Vec<f64>,
-    /// The momenta `pᵢ` of the root's DOFs, and their derivatives along `q` and `q̇` (`6 × nv` each: `H_r·`).
-    pub(super) p: [f64; 6],
-    pub(super) dp_dq: Vec<f64>,
-    pub(super) dp_dv: Vec<f64>,
-    /// `ỹ`, and zeros (`nv`, `n_λ`).
+    /// The root rows' values, and their derivatives along `q`, `q̇`, `q̈` (`6 × nv` each) and `λ̃` (`6 × n_λ`).
+    pub(super) row: [f64; 6],
+    d_q: Vec<f64>,
+    d_v: Vec<f64>,
+    d_a: Vec<f64>,
+    d_l: Vec<f64>,
+    /// `ỹ` and zeros (`nv`).
     y_tilde: Vec<f64>,
     zeros: Vec<f64>,
-    zeros_l: Vec<f64>,
 }
 
 impl FreeBody {
-    pub(super) fn new(model: &Model, nl: usize) -> Self {
-        let nv = model.nv();
-        let dofs: Vec<usize> = (0..nv).filter(|&i| model.is_unactuated(i)).collect();
+    pub(super) fn new(spec: &Spec, nl: usize) -> Self {
+        let nv = spec.model.nv();
+        let dofs: Vec<usize> = (0..nv).filter(|&i| spec.model.is_unactuated(i)).collect();
         if dofs.len() != 6 {
             return FreeBody::default();
         }
+        let conserved =
+            spec.contacts.is_empty() && spec.gravity.norm() == 0.0 && spec.loads.iter().all(|l| l.force.norm() == 0.0);
         let z = vec![0.0; 6 * nv];
         FreeBody {
             dofs,
+            conserved,
             g: z.clone(),
-            p: [0.0; 6],
-            dp_dq: z.clone(),
-            dp_dv: z,
+            row: [0.0; 6],
+            d_q: z.clone(),
+            d_v: z.clone(),
+            d_a: z,
+            d_l: vec![0.0; 6 * nl],
             y_tilde: vec![0.0; nv],
             zeros: vec![0.0; nv],
-            zeros_l: vec![0.0; nl],
         }
     }
 
-    /// Momentum row `m`'s derivatives with respect to the node's `q`, `q̇`, `q̈`, `λ̃`.
-    pub(super) fn momentum_row(&self, m: usize, nv: usize, nl: usize) -> Derivatives<'_> {
+    /// Root row `m`'s derivatives with respect to the node's `q`, `q̇`, `q̈`, `λ̃`.
+    pub(super) fn row_derivatives(&self, m: usize, nv: usize, nl: usize) -> Derivatives<'_> {
         Derivatives {
-            q: &self.dp_dq[m * nv..(m + 1) * nv],
-            v: &self.dp_dv[m * nv..(m + 1) * nv],
-            a: &self.zeros,
-            lambda: (nl > 0).then_some(&self.zeros_l[..]),
+            q: &self.d_q[m * nv..(m + 1) * nv],
+            v: &self.d_v[m * nv..(m + 1) * nv],
+            a: &self.d_a[m * nv..(m + 1) * nv],
+            lambda: (nl > 0).then(|| &self.d_l[m * nl..(m + 1) * nl]),
+        }
+    }
+
+    /// The unit of root row `m` on DOF `i`: a momentum's or a force's.
+    pub(super) fn unit(&self, model: &Model, i: usize) -> &'static str {
+        let prismatic = model.joints[i + 1].kind == crate::model::JointKind::Prismatic;
+        match (self.conserved, prismatic) {
+            (true, true) => "kg·m/s",
+            (true, false) => "kg·m²/s",
+            (false, true) => "N",
+            (false, false) => "N·m",
         }
     }
 }
 
 impl Transcription<'_> {
-    /// For a free body: the root's momenta into `self.free.p`, and the joints' torques in `self.work` (and
-    /// their derivatives when `jac`) replaced by the free body's, `τ_j* = τ_j − H_jr H_rr⁻¹ τ_r` (module
-    /// docs). `self.data.M` must hold `H(q)` when `jac`.
+    /// For a free body: the root rows into `self.free`, and the joints' torques in `self.work` (and their
+    /// derivatives when `jac`) replaced by the free body's, `τ_j* = τ_j − H_jr H_rr⁻¹ τ_r` (module docs).
+    /// `self.data.M` must hold `H(q)` when `jac`.
     pub(super) fn free_body(&mut self, jac: bool) {
-        let (nv, nl) = (self.layout.nv, self.layout.n_lambda);
-        let (model, w, data, f) = (&self.spec.model, &mut self.work, &mut self.data, &mut self.free);
-        let r = &f.dofs;
-        if r.is_empty() {
+        if self.free.dofs.is_empty() {
             return;
         }
         if !jac {
-            crba(model, data, &w.q);
+            crba(&self.spec.model, &mut self.data, &self.work.q);
         }
-        // pᵢ = Hᵢ· q̇, ∂pᵢ/∂q̇ = Hᵢ·
-        for (m, &ra) in r.iter().enumerate() {
-            f.p[m] = (0..nv).map(|c| data.M[(ra, c)] * w.qd[c]).sum();
-            for c in 0..nv {
-                f.dp_dv[m * nv + c] = data.M[(ra, c)];
+        self.root_row_values(jac);
+        let Some(y) = self.project_joint_torques() else { return };
+        if jac {
+            self.project_joint_torque_slopes(&y);
+        }
+    }
+
+    /// The root rows: the momenta `pᵢ = Hᵢ· q̇` (`∂/∂q̇ = Hᵢ·`, `∂/∂q = ∂(H q̇)/∂q`: inverse dynamics at
+    /// velocity 0, acceleration q̇, no gravity), or the spline's root forces `τᵢ`.
+    fn root_row_values(&mut self, jac: bool) {
+        let (nv, nl) = (self.layout.nv, self.layout.n_lambda);
+        let (model, w, data, f) = (&self.spec.model, &self.work, &mut self.data, &mut self.free);
+        for (m, &ra) in f.dofs.iter().enumerate() {
+            let rows = m * nv..(m + 1) * nv;
+            if f.conserved {
+                f.row[m] = (0..nv).map(|c| data.M[(ra, c)] * w.qd[c]).sum();
+                (0..nv).for_each(|c| f.d_v[m * nv + c] = data.M[(ra, c)]);
+            } else {
+                f.row[m] = w.tau[ra];
+                if jac {
+                    f.d_q[rows.clone()].copy_from_slice(&w.dq[ra * nv..(ra + 1) * nv]);
+                    f.d_v[rows.clone()].copy_from_slice(&w.dv[ra * nv..(ra + 1) * nv]);
+                    f.d_a[rows].copy_from_slice(&w.da[ra * nv..(ra + 1) * nv]);
+                    f.d_l[m * nl..(m + 1) * nl].copy_from_slice(&w.dl[ra * nl..(ra + 1) * nl]);
+                }
             }
         }
-        // H_rr y = τ_r
-        let h_rr = Matrix6::from_fn(|a, b| data.M[(r[a], r[b])]);
-        let Some(chol) = h_rr.cholesky() else { return };
+        if f.conserved && jac {
+            rnea_derivatives(model, data, &w.q, &f.zeros, &w.qd, &Vec3::zeros(), None);
+            for (m, &ra) in f.dofs.iter().enumerate() {
+                (0..nv).for_each(|c| f.d_q[m * nv + c] = data.dtau_dq[(ra, c)]);
+            }
+        }
+    }
+
+    /// `τ_j* = τ_j − H_jr y`, `H_rr y = τ_r`, and `G`; the root's torques then 0. `None` if `H_rr` is
+    /// singular (the torques are left as they are).
+    fn project_joint_torques(&mut self) -> Option<Vector6<f64>> {
+        let nv = self.layout.nv;
+        let (w, f, h) = (&mut self.work, &mut self.free, &self.data.M);
+        let r = &f.dofs;
+        let chol = Matrix6::from_fn(|a, b| h[(r[a], r[b])]).cholesky()?;
         let y = chol.solve(&Vector6::from_fn(|a, _| w.tau[r[a]]));
         for j in (0..nv).filter(|j| !r.contains(j)) {
             // G_j = H_jr H_rr⁻¹ (its row: H_rr⁻¹ H_rj, H_rr symmetric); τ_j* = τ_j − H_jr y
-            let g = chol.solve(&Vector6::from_fn(|a, _| data.M[(j, r[a])]));
-            f.g[j * 6..j * 6 + 6].copy_from_slice(g.as_slice());
-            w.tau[j] -= (0..6).map(|a| data.M[(j, r[a])] * y[a]).sum::<f64>();
+            let h_jr = Vector6::from_fn(|a, _| h[(j, r[a])]);
+            f.g[j * 6..j * 6 + 6].copy_from_slice(chol.solve(&h_jr).as_slice());
+            w.tau[j] -= h_jr.dot(&y);
         }
-        // The free body's root force is 0 (its rows hold the momentum instead).
         r.iter().for_each(|&ra| w.tau[ra] = 0.0);
-        if !jac {
-            return;
-        }
-        // ∂τ_j* = ∂τ_j − G ∂τ_r, for the q, q̇, q̈ and λ̃ columns
+        Some(y)
+    }
+
+    /// `∂τ_j* = ∂τ_j − G ∂τ_r` for the `q, q̇, q̈, λ̃` columns, less `D_j − G D_r` along `q`
+    /// (`D = ∂(H ỹ)/∂q`); the root's rows then 0.
+    fn project_joint_torque_slopes(&mut self, y: &Vector6<f64>) {
+        let (nv, nl) = (self.layout.nv, self.layout.n_lambda);
+        let (model, w, data, f) = (&self.spec.model, &mut self.work, &mut self.data, &mut self.free);
+        let r = &f.dofs;
         for j in (0..nv).filter(|j| !r.contains(j)) {
             for (m, &ra) in r.iter().enumerate() {
                 let g = f.g[j * 6 + m];
@@ -189,14 +245,6 @@ impl Transcription<'_> {
             }
             w.dl[ra * nl..(ra + 1) * nl].fill(0.0);
         }
-        // ∂p/∂q = ∂(H q̇)/∂q: inverse dynamics at velocity 0, acceleration q̇, no gravity
-        rnea_derivatives(model, data, &w.q, &f.zeros, &w.qd, &Vec3::zeros(), None);
-        for (m, &ra) in r.iter().enumerate() {
-            for c in 0..nv {
-                f.dp_dq[m * nv + c] = data.dtau_dq[(ra, c)];
-            }
-        }
-        // D = ∂(H ỹ)/∂q, and ∂τ_j*/∂q −= D_j − G D_r
         f.y_tilde.fill(0.0);
         for (m, &ra) in r.iter().enumerate() {
             f.y_tilde[ra] = y[m];
@@ -210,16 +258,16 @@ impl Transcription<'_> {
         }
     }
 
-    /// The root's rows `h = pᵢ` of node `k` (after `eval_node(k)`), with their Jacobians (eq. 33).
+    /// The root's rows `h = pᵢ` (or `τᵢ`) of node `k` (after `eval_node(k)`), with their Jacobians (eq. 33).
     pub(super) fn root_rows(&mut self, k: usize, want_jac: bool, out: &mut Evaluation) {
         let Some(b) = self.root.block(k) else { return };
         let (nv, nl) = (self.layout.nv, self.layout.n_lambda);
         let basis = self.nodes.basis[k];
         for m in 0..self.root.dofs.len() {
             let row = b * self.root.dofs.len() + m;
-            out.h[row] = self.free.p[m];
+            out.h[row] = self.free.row[m];
             if want_jac {
-                Self::chain_rule(&self.layout, &basis, 1.0, self.free.momentum_row(m, nv, nl), out.jh.row_values_mut(row));
+                Self::chain_rule(&self.layout, &basis, 1.0, self.free.row_derivatives(m, nv, nl), out.jh.row_values_mut(row));
             }
         }
     }
@@ -238,7 +286,8 @@ impl Transcription<'_> {
     pub(super) fn root_row_name(&self, index: usize) -> String {
         let (k, i) = self.root.decode(index);
         let joint = &self.spec.model.joints[i + 1].name;
-        format!("zero momentum along the free root's joint \"{joint}\" at t = {:.3} s", self.nodes.t[k])
+        let what = if self.free.conserved { "momentum" } else { "force" };
+        format!("zero {what} along the free root's joint \"{joint}\" at t = {:.3} s", self.nodes.t[k])
     }
 
     /// The unit of DOF `i`'s generalised force.
@@ -247,15 +296,6 @@ impl Transcription<'_> {
             "N"
         } else {
             "N·m"
-        }
-    }
-
-    /// The unit of DOF `i`'s generalised momentum.
-    pub(super) fn momentum_unit(&self, i: usize) -> &'static str {
-        if self.spec.model.joints[i + 1].kind == crate::model::JointKind::Prismatic {
-            "kg·m/s"
-        } else {
-            "kg·m²/s"
         }
     }
 }
