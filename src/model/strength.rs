@@ -70,6 +70,24 @@ pub struct Sloped {
     pub d2: f64,
 }
 
+/// `ω⁺ = ½(ω + √(ω² + ε²))` and `dω⁺/dω = ½(1 + ω/√(ω² + ε²))`; `(ω, 1)` when `ε = 0`.
+pub(crate) fn smoothed_speed(omega: f64, smoothing: f64) -> (f64, f64) {
+    if smoothing > 0.0 {
+        let root = omega.hypot(smoothing);
+        (0.5 * (omega + root), 0.5 * (1.0 + omega / root))
+    } else {
+        (omega, 1.0)
+    }
+}
+
+/// An angle factor `(a, a')` times a velocity factor `(v, v')`, each floored at [`FACTOR_FLOOR`] (its slope
+/// then 0): `a v`, `∂/∂θ = a' v`, `∂/∂ω = a v'`.
+pub(crate) fn floored_product((a, da): (f64, f64), (v, dv): (f64, f64)) -> Sloped {
+    let (a, da) = if a < FACTOR_FLOOR { (FACTOR_FLOOR, 0.0) } else { (a, da) };
+    let (v, dv) = if v < FACTOR_FLOOR { (FACTOR_FLOOR, 0.0) } else { (v, dv) };
+    Sloped { value: a * v, d1: da * v, d2: a * dv }
+}
+
 impl Surface {
     /// `T(θ, ω) / (C₁ m g h)`: the angle factor times the velocity factor, each floored.
     pub fn shape(&self, theta: f64, omega: f64) -> f64 {
@@ -84,32 +102,19 @@ impl Surface {
     pub fn shape_sloped(&self, theta: f64, omega: f64, smoothing: f64) -> Sloped {
         let [_, c2, c3, c4, c5] = self.c;
         // a = cos(C₂(θ − C₃)), a' = −C₂ sin(C₂(θ − C₃))
-        let (mut a, mut da) = ((c2 * (theta - c3)).cos(), -c2 * (c2 * (theta - c3)).sin());
+        let (a, da) = ((c2 * (theta - c3)).cos(), -c2 * (c2 * (theta - c3)).sin());
         // v = (2C₄C₅ + ω(C₅ − 3C₄)) / (2C₄C₅ + ω(2C₅ − 4C₄)) concentric, 1 eccentric;
         // v' = ((C₅ − 3C₄)·den − num·(2C₅ − 4C₄)) / den²
-        // ω⁺ = ½(ω + √(ω² + ε²)), dω⁺/dω = ½(1 + ω/√(ω² + ε²)); ω itself when ε = 0
-        let (omega, d_plus) = match smoothing > 0.0 {
-            true => {
-                let root = omega.hypot(smoothing);
-                (0.5 * (omega + root), 0.5 * (1.0 + omega / root))
-            }
-            false => (omega, 1.0),
-        };
-        let (mut v, mut dv) = match omega > 0.0 {
+        let (omega, d_plus) = smoothed_speed(omega, smoothing);
+        let (v, dv) = match omega > 0.0 {
             true => {
                 let (num, den) = (2.0 * c4 * c5 + omega * (c5 - 3.0 * c4), 2.0 * c4 * c5 + omega * (2.0 * c5 - 4.0 * c4));
                 (num / den, d_plus * ((c5 - 3.0 * c4) * den - num * (2.0 * c5 - 4.0 * c4)) / (den * den))
             }
             false => (1.0, 0.0),
         };
-        if a < FACTOR_FLOOR {
-            (a, da) = (FACTOR_FLOOR, 0.0);
-        }
-        if v < FACTOR_FLOOR {
-            (v, dv) = (FACTOR_FLOOR, 0.0);
-        }
         // T/(C₁mgh) = a v: ∂/∂θ = a' v, ∂/∂ω = a v'
-        Sloped { value: a * v, d1: da * v, d2: a * dv }
+        floored_product((a, da), (v, dv))
     }
 
     /// Where the floored factors have corners: the angles at which the angle factor meets its floor,

@@ -35,7 +35,7 @@
 //!   after Raschke & Chaffin, rises with flexion to a peak at 89°: the sources disagree.) Trunk flexion
 //!   there is the trunk's inclination, here the model's lumbar joint.
 
-use super::{Sloped, FACTOR_FLOOR};
+use super::{floored_product, smoothed_speed, Sloped, FACTOR_FLOOR};
 
 /// One direction's shape: a Gaussian angle factor and a Hill velocity factor.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -127,16 +127,10 @@ impl Shape {
         let d = theta - self.peak_angle;
         let s2 = self.width * self.width;
         let a = (-d * d / (2.0 * s2)).exp();
-        let (mut a, mut da) = (a, -a * d / s2);
-        let (omega, d_plus) = match smoothing > 0.0 {
-            true => {
-                let root = omega.hypot(smoothing);
-                (0.5 * (omega + root), 0.5 * (1.0 + omega / root))
-            }
-            false => (omega, 1.0),
-        };
+        let da = -a * d / s2;
+        let (omega, d_plus) = smoothed_speed(omega, smoothing);
         // v = (1 − x)/(1 + x/k), x = ω/ω_max; dv/dω = −(1 + 1/k)/(1 + x/k)² / ω_max
-        let (mut v, mut dv) = match omega > 0.0 {
+        let (v, dv) = match omega > 0.0 {
             true => {
                 let (k, x) = (self.hill_k(), omega / self.omega_max);
                 let den = 1.0 + x / k;
@@ -144,13 +138,7 @@ impl Shape {
             }
             false => (1.0, 0.0),
         };
-        if a < FACTOR_FLOOR {
-            (a, da) = (FACTOR_FLOOR, 0.0);
-        }
-        if v < FACTOR_FLOOR {
-            (v, dv) = (FACTOR_FLOOR, 0.0);
-        }
-        Sloped { value: a * v, d1: da * v, d2: a * dv }
+        floored_product((a, da), (v, dv))
     }
 
     /// Where the floored factors have corners: `θ* ± σ√(2 ln(1/F))` (rad) and the speed where

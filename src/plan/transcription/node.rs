@@ -12,6 +12,14 @@ pub(super) struct Derivatives<'a> {
     pub(super) lambda: Option<&'a [f64]>,
 }
 
+impl<'a> Derivatives<'a> {
+    /// Row `l` of the row-major matrices `[∂/∂q, ∂/∂q̇, ∂/∂q̈]` (`nv` columns each) and `∂/∂λ̃` (`nl`).
+    pub(super) fn row(l: usize, (nv, nl): (usize, usize), [q, v, a]: [&'a [f64]; 3], lambda: &'a [f64]) -> Self {
+        let r = l * nv..(l + 1) * nv;
+        Derivatives { q: &q[r.clone()], v: &v[r.clone()], a: &a[r], lambda: (nl > 0).then(|| &lambda[l * nl..(l + 1) * nl]) }
+    }
+}
+
 impl NodeWork {
     /// The objective's residual and its derivatives times `s`.
     pub(super) fn scale_residual(&mut self, s: f64) {
@@ -22,22 +30,12 @@ impl NodeWork {
 
     /// The derivatives of the objective's residual `l` at this node.
     pub(super) fn residual_row(&self, l: usize, nv: usize, nl: usize) -> Derivatives<'_> {
-        Derivatives {
-            q: &self.rdq[l * nv..(l + 1) * nv],
-            v: &self.rdv[l * nv..(l + 1) * nv],
-            a: &self.rda[l * nv..(l + 1) * nv],
-            lambda: (nl > 0).then(|| &self.rdl[l * nl..(l + 1) * nl]),
-        }
+        Derivatives::row(l, (nv, nl), [&self.rdq, &self.rdv, &self.rda], &self.rdl)
     }
 
     /// The derivatives of active torque `l` at this node.
     pub(super) fn torque_row(&self, l: usize, nv: usize, nl: usize) -> Derivatives<'_> {
-        Derivatives {
-            q: &self.dq[l * nv..(l + 1) * nv],
-            v: &self.dv[l * nv..(l + 1) * nv],
-            a: &self.da[l * nv..(l + 1) * nv],
-            lambda: (nl > 0).then(|| &self.dl[l * nl..(l + 1) * nl]),
-        }
+        Derivatives::row(l, (nv, nl), [&self.dq, &self.dv, &self.da], &self.dl)
     }
 }
 

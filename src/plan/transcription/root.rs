@@ -136,12 +136,7 @@ impl FreeBody {
 
     /// Root row `m`'s derivatives with respect to the node's `q`, `q̇`, `q̈`, `λ̃`.
     pub(super) fn row_derivatives(&self, m: usize, nv: usize, nl: usize) -> Derivatives<'_> {
-        Derivatives {
-            q: &self.d_q[m * nv..(m + 1) * nv],
-            v: &self.d_v[m * nv..(m + 1) * nv],
-            a: &self.d_a[m * nv..(m + 1) * nv],
-            lambda: (nl > 0).then(|| &self.d_l[m * nl..(m + 1) * nl]),
-        }
+        Derivatives::row(m, (nv, nl), [&self.d_q, &self.d_v, &self.d_a], &self.d_l)
     }
 
     /// The unit of root row `m` on DOF `i`: a momentum's or a force's.
