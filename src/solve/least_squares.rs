@@ -54,6 +54,9 @@ const SECANT_REFRESH: usize = 4;
 /// model for the rest of the solve: most inner solves converge in fewer; one that has not is crawling
 /// (docs/performance.md).
 const ESCALATE_AFTER: usize = 100;
+/// The fewest inner steps before escalating, on small problems: the threshold is `0.7 × the Gram matrix's
+/// half-bandwidth` within [30, 100] — 30 at 7 DOF, about 60 at 21, 100 at 37 (docs/performance.md).
+const ESCALATE_SOONEST: usize = 30;
 /// Models between recomputations of the problem's exact second-order term (and at every multiplier
 /// update). Measured on the bundled examples with `newton`, one start: every 5 models instead of every one
 /// costs 15–60 % more iterations but 1.5–3.4× less time (docs/performance.md).
@@ -81,7 +84,12 @@ pub(crate) fn solve_structured(
     observer: &mut dyn FnMut(&Progress),
     escalate_after: Option<usize>,
 ) -> Outcome {
-    let inner = |eval: &Evaluation| LevenbergMarquardt { escalate_after, ..LevenbergMarquardt::new(eval, false) };
+    let inner = |eval: &Evaluation| {
+        let lm = LevenbergMarquardt::new(eval, false);
+        // Escalate sooner where the exact term is cheap: its cost per model grows with the band (≈ 4 nv).
+        let k = escalate_after.map(|max| ((0.7 * lm.gram.bandwidth() as f64) as usize).clamp(ESCALATE_SOONEST, max));
+        LevenbergMarquardt { escalate_after: k, ..lm }
+    };
     solve_with(problem, x0, settings, observer, inner)
 }
 
