@@ -5,7 +5,7 @@
 //! flexors, and the squat, holding the box further out in front of its knees, loads L5/S1 more (Kingma,
 //! Bosch, Bruins & van Dieën 2004, *Ergonomics* 47:1365). Both plans are also checked to be lifts a person
 //! makes: a stoop stays a stoop, the box clears the legs, both feet carry the load, and the body stays in
-//! its sagittal plane. The hips' peaks are printed, with no order asserted (docs/ergonomics.md says why).
+//! its sagittal plane. The hips' peaks are printed, with no order asserted (docs/ergonomic-examples.md says why).
 
 use mintorque::dynamics::{kinematics, Data};
 use mintorque::plan::{self, task::Task};
