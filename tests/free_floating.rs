@@ -51,3 +51,29 @@ fn arm_lift_in_space_floating_free_conserves_momentum_and_costs_less_than_held_b
     assert!(f.com_drift < 0.05 * h.com_drift, "centre of mass: free moves {} m, held {} m", f.com_drift, h.com_drift);
     assert!(ef < 0.95 * eh, "floating free costs {ef}, held {eh}");
 }
+
+/// The samples of a free body are its own motion: inverse dynamics of a sample's `q, q̇, q̈` gives the root
+/// no force and the joints the plan's torques (plus the passive ones) — so the joint loads and L5/S1
+/// figures computed from the samples are those of the body the torques move.
+#[test]
+fn a_free_bodys_samples_need_no_root_force_and_give_the_plans_torques() {
+    use mintorque::dynamics::{rnea::rnea, Data};
+    let (_, task, samples) = planned("arm_lift_space_free", 24);
+    let m = &task.spec.model;
+    let mut data = Data::new(m);
+    let (mut root, mut joints, mut peak) = (0.0f64, 0.0f64, 0.0f64);
+    for s in &samples {
+        rnea(m, &mut data, &s.q, &s.qd, &s.qdd, &task.spec.gravity, None);
+        for i in 0..m.nv() {
+            let tau = data.tau[i] - m.joints[i + 1].passive.torque(s.q[i], s.qd[i]);
+            if m.is_unactuated(i) {
+                root = root.max(tau.abs());
+            } else {
+                joints = joints.max((tau - s.tau[i]).abs());
+                peak = peak.max(s.tau[i].abs());
+            }
+        }
+    }
+    println!("root force ≤ {root:.2e} N (N·m), joint torques off by ≤ {joints:.2e} of a peak {peak:.2} N·m");
+    assert!(root < 1e-8 * peak && joints < 1e-8 * peak, "root {root}, joints {joints}, peak {peak}");
+}

@@ -105,6 +105,8 @@ pub(super) struct FreeBody {
     d_v: Vec<f64>,
     d_a: Vec<f64>,
     d_l: Vec<f64>,
+    /// `y = H_rr⁻¹ τ_r`: the free root's acceleration is the spline's less `y` (`q̈_r* = q̈_r − y`).
+    pub(super) accel_shift: [f64; 6],
     /// `ỹ` and zeros (`nv`).
     y_tilde: Vec<f64>,
     zeros: Vec<f64>,
@@ -125,6 +127,7 @@ impl FreeBody {
             conserved,
             g: z.clone(),
             row: [0.0; 6],
+            accel_shift: [0.0; 6],
             d_q: z.clone(),
             d_v: z.clone(),
             d_a: z,
@@ -203,8 +206,10 @@ impl Transcription<'_> {
         let nv = self.layout.nv;
         let (w, f, h) = (&mut self.work, &mut self.free, &self.data.M);
         let r = &f.dofs;
+        f.accel_shift = [0.0; 6];
         let chol = Matrix6::from_fn(|a, b| h[(r[a], r[b])]).cholesky()?;
         let y = chol.solve(&Vector6::from_fn(|a, _| w.tau[r[a]]));
+        f.accel_shift.copy_from_slice(y.as_slice());
         for j in (0..nv).filter(|j| !r.contains(j)) {
             // G_j = H_jr H_rr⁻¹ (its row: H_rr⁻¹ H_rj, H_rr symmetric); τ_j* = τ_j − H_jr y
             let h_jr = Vector6::from_fn(|a, _| h[(j, r[a])]);

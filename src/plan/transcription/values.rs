@@ -11,7 +11,8 @@ pub struct NodeValues {
     pub q: Vec<f64>,
     /// Joint velocities (rad/s or m/s).
     pub qd: Vec<f64>,
-    /// Joint accelerations (rad/s² or m/s²).
+    /// Joint accelerations (rad/s² or m/s²); a free root's are the free body's (`q̈_r − H_rr⁻¹ τ_r`, the
+    /// acceleration its joints' torques assume), not its spline's.
     pub qdd: Vec<f64>,
     /// Active (muscle) torques: total minus passive, contact and load contributions.
     pub tau: Vec<f64>,
@@ -33,11 +34,15 @@ impl Transcription<'_> {
             .iter()
             .map(|info| info.directions.iter().enumerate().fold(Vec3::zeros(), |f, (m, e)| f + e * w.lambda[info.offset + m]))
             .collect();
+        let mut qdd = w.qdd.clone();
+        for (m, &r) in self.free.dofs.iter().enumerate() {
+            qdd[r] -= self.free.accel_shift[m];
+        }
         NodeValues {
             t: self.nodes.t[k],
             q: w.q.clone(),
             qd: w.qd.clone(),
-            qdd: w.qdd.clone(),
+            qdd,
             tau: w.tau.clone(),
             contact_forces,
             contact_points: w.points.clone(),
