@@ -76,9 +76,9 @@ pub(super) fn enforce(
             // augmented Lagrangian can crawl at the penalty it ended with), solve again from the guess,
             // cold, with the check nodes — within what is left of the one budget.
             let cap = left.min(first_iterations.max(100));
-            // A warm re-solve that goes astray is abandoned for the cold one (the twist lift's did, twice,
-            // to a violation 800× its start — 190 iterations each — with multipliers grown large against
-            // its nearly straight legs' closure).
+            // A warm re-solve that goes astray is abandoned for the cold one at the step its violation
+            // passes 100× its start (the twist lift's did, twice, within 15 steps, with multipliers grown
+            // large against its nearly straight legs' closure).
             let warm = Settings {
                 warm_start: Some(warm),
                 warm_divergence: Some(WARM_DIVERGENCE),

@@ -82,6 +82,8 @@ enum Limit {
     Iterations,
     /// [`InnerSolver::stall_window`] accepted steps without progress in `L_A` or in its gradient.
     Stall,
+    /// A warm start's violation passed [`Settings::warm_divergence`]'s bound at an accepted step.
+    WarmDiverged,
 }
 
 /// Progress of the current inner solve, for the stall test.
@@ -133,6 +135,9 @@ pub(crate) struct AugmentedLagrangian<'a> {
     cancel: crate::solve::Cancel,
     max_iterations: usize,
     limit_hit: Option<Limit>,
+    /// The scaled violation at a warm start, and the bound past which it has diverged
+    /// ([`Settings::warm_divergence`]); `None` for a cold start or without the guard.
+    warm_guard: Option<(f64, f64)>,
     stall: StallWatch,
     stall_window: usize,
     /// What the inner solver reports of its model and damping (see [`Progress::model`]).
@@ -342,12 +347,13 @@ impl<'a> AugmentedLagrangian<'a> {
             w.since = if gradient_progress || value_progress { 0 } else { w.since + 1 };
         }
         let objective = self.objective();
+        let violation = self.violation().0;
         let progress = Progress {
             outer_iteration: self.outer,
             iteration: self.iterations,
             evaluations: self.evaluations,
             objective,
-            violation: self.violation().0,
+            violation,
             stationarity: iterate.gradient_norm / (1.0 + objective.abs()),
             penalty: self.penalty,
             model: self.inner_model.0,
@@ -360,6 +366,8 @@ impl<'a> AugmentedLagrangian<'a> {
             self.limit_hit = Some(Limit::Iterations);
         } else if self.stall.since >= self.stall_window {
             self.limit_hit = Some(Limit::Stall);
+        } else if self.warm_guard.is_some_and(|(_, bound)| violation > bound) {
+            self.limit_hit = Some(Limit::WarmDiverged);
         }
         self.limit_hit.is_none()
     }

@@ -64,8 +64,9 @@ pub struct Settings {
     pub time_limit: Option<f64>,
     /// Multipliers to start from (e.g. from a previous solve of a similar problem); zero if `None`.
     pub warm_start: Option<Multipliers>,
-    /// With a warm start: give up ([`StopReason::WarmStartDiverged`]) once a multiplier update leaves the
-    /// scaled violation above this multiple of the warm start's, and above [`DIVERGED_VIOLATION`]. For a
+    /// With a warm start: give up ([`StopReason::WarmStartDiverged`]) as soon as the scaled violation,
+    /// at an accepted step or after a multiplier update, is above this multiple of the warm start's and
+    /// above [`DIVERGED_VIOLATION`] (not only after the inner solve that went astray has ended). For a
     /// caller with a cold start to fall back on (the planner's re-solves between the nodes); `None`: never.
     #[serde(skip)]
     pub warm_divergence: Option<f64>,
@@ -215,7 +216,7 @@ pub enum StopReason {
         /// `w_p` when the solve gave up.
         penalty: f64,
     },
-    /// A warm start went astray: a multiplier update left the scaled violation at `violation`, more than
+    /// A warm start went astray: at an accepted step or a multiplier update the scaled violation reached `violation`, more than
     /// [`Settings::warm_divergence`] times the `start`'s.
     WarmStartDiverged {
         /// Scaled violation at the warm start.

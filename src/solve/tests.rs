@@ -736,3 +736,24 @@ fn solve_a_diverging_warm_start_gives_up_only_when_asked() {
     let StopReason::WarmStartDiverged { start, violation } = o.reason else { panic!("{}", summary(&o)) };
     assert!(!o.converged && start < 1e-12 && violation > solver::DIVERGED_VIOLATION, "{}", summary(&o));
 }
+
+/// The guard acts at the accepted step that crosses its bound, not after the inner solve that went astray:
+/// on HS6 warm-started at its solution with μ = 10⁶ at penalty 1, the inner solve walks the equality off
+/// over many steps. Guarded, the observer sees exactly one step past the bound (the last); unguarded (the
+/// opposite condition) it sees many.
+#[test]
+fn solve_a_diverging_warm_start_gives_up_at_the_step_that_crossed() {
+    let mut p = hs6();
+    let wrong = Multipliers { lambda: vec![], mu: vec![1e6] };
+    let warm = Settings { warm_start: Some(wrong), initial_penalty: Some(1.0), max_iterations: 200, ..tight() };
+    let past = |settings: &Settings, p: &mut Small| {
+        let mut seen = Vec::new();
+        let o = AugLagLevenbergMarquardt.solve(p, &[1.0, 1.0], settings, &mut |pr| seen.push(pr.violation));
+        (o, seen.iter().filter(|&&v| v > solver::DIVERGED_VIOLATION).count())
+    };
+    let (unguarded, walked) = past(&warm, &mut p);
+    assert!(walked > 3, "unguarded: {walked} steps past the bound; {}", summary(&unguarded));
+    let (o, crossed) = past(&Settings { warm_divergence: Some(100.0), ..warm }, &mut p);
+    assert!(matches!(o.reason, StopReason::WarmStartDiverged { .. }), "{}", summary(&o));
+    assert_eq!(crossed, 1, "{}", summary(&o));
+}

@@ -177,6 +177,7 @@ impl<'a> AugmentedLagrangian<'a> {
             cancel: settings.cancel.clone(),
             max_iterations: settings.max_iterations,
             limit_hit: None,
+            warm_guard: None,
             stall: StallWatch { gradient_norm: f64::INFINITY, value: f64::INFINITY, since: 0 },
             stall_window: usize::MAX,
             inner_model: ("", f64::NAN),
@@ -206,28 +207,21 @@ pub(crate) fn solve_with<I: InnerSolver>(
     if settings.initial_penalty.is_none() {
         al.penalty = automatic_penalty(&al.eval, &al.scales);
     }
-    let mut warm_violation = None;
     if settings.warm_start.is_some() {
         // Resuming from a solution: nothing to do if the test already holds with the given multipliers.
         let assessment = al.assess(false, settings);
         if assessment.converged {
             return al.finish(x, StopReason::Converged, Some(assessment), settings);
         }
-        warm_violation = Some(assessment.violation);
+        let start = assessment.violation;
+        al.warm_guard = settings.warm_divergence.map(|factor| (start, (factor * start).max(DIVERGED_VIOLATION)));
     }
-    al.outer_loop(&mut inner, x, settings, warm_violation)
+    al.outer_loop(&mut inner, x, settings)
 }
 
 impl AugmentedLagrangian<'_> {
-    /// The outer iterations from `x`; `warm_violation`: the scaled violation at a warm start, for
-    /// [`Settings::warm_divergence`].
-    fn outer_loop(
-        &mut self,
-        inner: &mut dyn InnerSolver,
-        mut x: Vec<f64>,
-        settings: &Settings,
-        warm_violation: Option<f64>,
-    ) -> Outcome {
+    /// The outer iterations from `x`.
+    fn outer_loop(&mut self, inner: &mut dyn InnerSolver, mut x: Vec<f64>, settings: &Settings) -> Outcome {
         let mut omega = FIRST_INNER_TOLERANCE.max(settings.tol_stationarity);
         let mut previous_progress = f64::INFINITY;
         let mut stuck = 0;
@@ -269,8 +263,9 @@ impl AugmentedLagrangian<'_> {
             if let Some(reason) = slow.after(&status, &assessment, settings) {
                 return self.finish(x, reason, last, settings);
             }
-            if let (Some(start), Some(factor)) = (warm_violation, settings.warm_divergence) {
-                if assessment.violation > (factor * start).max(DIVERGED_VIOLATION) {
+            // A warm start that went astray, at an accepted step or after this update: give up at once.
+            if let Some((start, bound)) = self.warm_guard {
+                if self.limit_hit == Some(Limit::WarmDiverged) || assessment.violation > bound {
                     let reason = StopReason::WarmStartDiverged { start, violation: assessment.violation };
                     return self.finish(x, reason, last, settings);
                 }
