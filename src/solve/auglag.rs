@@ -186,12 +186,6 @@ impl<'a> AugmentedLagrangian<'a> {
         (self.eval.g[i] / self.scales.ineq[i]).max(-self.lambda[i] / (2.0 * self.penalty))
     }
 
-    /// Inequality `i`'s shifted scaled value `sᵢ = ĝᵢ + λᵢ/2w_p` (the row is active in `L_A` where `sᵢ > 0`)
-    /// and its scale, at the last evaluated point.
-    pub(crate) fn shifted_inequality(&self, i: usize) -> (f64, f64) {
-        (self.eval.g[i] / self.scales.ineq[i] + self.lambda[i] / (2.0 * self.penalty), self.scales.ineq[i])
-    }
-
     fn h_scaled(&self, k: usize) -> f64 {
         self.eval.h[k] / self.scales.eq[k]
     }

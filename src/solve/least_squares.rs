@@ -41,10 +41,7 @@ use super::partitioned::SecondOrderTerm;
 use super::problem::{Evaluation, Problem};
 use super::solver::{Outcome, Progress, Settings, Solver};
 
-mod crossing;
 mod step;
-
-use crossing::Crossing;
 
 /// Marquardt parameter at the start of each inner solve (relative to `D`), Nielsen's `τ = 10⁻³`.
 const INITIAL_DAMPING: f64 = 1e-3;
@@ -137,8 +134,6 @@ struct LevenbergMarquardt {
     exact_refresh: usize,
     /// Set at the start of an inner solve: the next model recomputes the exact term.
     fresh: bool,
-    /// Work for the inequality rows a step crosses ([`crossing`]).
-    crossing: Crossing,
 }
 
 /// Where the model's second-order term comes from.
@@ -177,7 +172,6 @@ impl LevenbergMarquardt {
         let bandwidth = [&eval.jr, &eval.jh, &eval.jg].iter().map(|j| j.gram_bandwidth()).max().unwrap_or(0);
         let gram = SymmetricMatrix::for_bandwidth(n, bandwidth);
         LevenbergMarquardt {
-            crossing: Crossing::new(&gram, eval.jg.nrows()),
             factor: Cholesky::for_matrix(&gram),
             gram,
             scaling: vec![0.0; n],

@@ -757,23 +757,3 @@ fn solve_a_diverging_warm_start_gives_up_at_the_step_that_crossed() {
     assert!(matches!(o.reason, StopReason::WarmStartDiverged { .. }), "{}", summary(&o));
     assert_eq!(crossed, 1, "{}", summary(&o));
 }
-
-/// min ½(x − 3)² s.t. x ≤ 1, from x = 0 where the bound is inactive; `L_A` is exactly piecewise quadratic.
-/// A step whose model sees the bound it crosses (`least_squares/crossing.rs`) is never rejected: the first
-/// inner solve evaluates only at its accepted steps (6 steps, 7 evaluations). Without the crossing (the
-/// opposite condition, measured by disabling it) Gauss–Newton steps past the kink and is rejected: 5 steps,
-/// 10 evaluations.
-#[test]
-fn solve_a_step_sees_the_inequality_it_crosses() {
-    fn model(x: &[f64]) -> (Values, Jacobians) {
-        ((vec![x[0] - 3.0], vec![], vec![x[0] - 1.0]), (mat(1, 1, &[1.0]), DMatrix::zeros(0, 1), mat(1, 1, &[1.0])))
-    }
-    let mut p = Small::new(dims(1, 1, 0, 1), model, vec!["x ≤ 1"]);
-    let settings = Settings { initial_penalty: Some(10.0), ..tight() };
-    let mut seen: Vec<Progress> = Vec::new();
-    let o = AugLagLevenbergMarquardt.solve(&mut p, &[0.0], &settings, &mut |pr| seen.push(*pr));
-    assert_converged(&o, "x ≤ 1");
-    assert!((o.x[0] - 1.0).abs() < 1e-6, "{}", summary(&o));
-    let first = seen.iter().filter(|pr| pr.outer_iteration == 0).last().expect("a report");
-    assert_eq!(first.evaluations, first.iteration + 1, "a rejected step in the first inner solve: {first:?}");
-}

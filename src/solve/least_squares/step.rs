@@ -82,30 +82,19 @@ impl LevenbergMarquardt {
                 *s = -g;
             }
             self.factor.solve_in_place(&mut self.step);
-            // The inequality rows the step crosses join the model (`crossing`), with its predicted decrease.
-            let crossed = match self.step.iter().all(|s| s.is_finite()) {
-                true => self.cross(al),
-                false => None,
-            };
             if !self.step.iter().all(|s| s.is_finite()) {
                 self.reject();
                 continue;
             }
             // Model decrease L(0) − L(δ) = −gᵀδ − ½δᵀ(JᵀJ)δ = ½ δᵀ(νDδ − g), as (JᵀJ + νD)δ = −g.
-            let predicted: f64 = crossed.unwrap_or_else(|| {
-                0.5 * self.step.iter().zip(&self.shift).zip(&self.gradient).map(|((d, s), g)| d * (s * d - g)).sum::<f64>()
-            });
+            let predicted: f64 =
+                0.5 * self.step.iter().zip(&self.shift).zip(&self.gradient).map(|((d, s), g)| d * (s * d - g)).sum::<f64>();
             let mut moved = false;
             for ((xt, xi), d) in self.x_trial.iter_mut().zip(x.iter()).zip(&self.step) {
                 *xt = xi + d;
                 moved |= *xt != *xi;
             }
             if !moved || predicted.is_nan() || predicted <= 0.0 {
-                if crossed.is_some() && moved {
-                    // The crossed rows' kinks ate the decrease: a shorter step.
-                    self.reject();
-                    continue;
-                }
                 return Step::Stalled;
             }
             let mut trial = match al.evaluate(&self.x_trial, true) {
