@@ -31,7 +31,7 @@ fn planned(objective: &str, limits: &str, solver: Option<SolverKind>) -> (Measur
     if let Some(s) = solver {
         task.solver = s;
     }
-    task.multistart.starts = 1;
+    task.multistart = mintorque::plan::MultiStart::single();
     let p = task.plan(&mut |_| {}).unwrap();
     assert!(p.converged(), "{objective}: {}", p.outcome.reason);
     let n = 3000;

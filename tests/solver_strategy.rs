@@ -17,7 +17,7 @@ fn task(example: &str) -> Task {
 #[test]
 fn multistart_is_deterministic_and_never_worse_than_one_start() {
     let t = task("double_pendulum");
-    let multi = MultiStart { starts: 3, seed: 1 };
+    let multi = MultiStart::exactly(3);
     let single = plan::plan(&t.spec, t.solver, &t.settings, &mut |_| {}).unwrap();
     let a = plan::plan_with_starts(&t.spec, t.solver, &t.settings, &multi, &mut |_| {}).unwrap();
     let b = plan::plan_with_starts(&t.spec, t.solver, &t.settings, &multi, &mut |_| {}).unwrap();
@@ -49,6 +49,34 @@ fn multistart_is_deterministic_and_never_worse_than_one_start() {
     let other_seed =
         plan::plan_with_starts(&t.spec, t.solver, &t.settings, &MultiStart { seed: 2, ..multi }, &mut |_| {}).unwrap();
     assert_ne!(other_seed.starts[1].objective, a.starts[1].objective, "another seed perturbs differently");
+}
+
+/// The default starts (`"auto"`): where the first two agree (the leg lift has one basin) no more are
+/// solved; where they disagree (the double pendulum's two reach 1758 and 1683) two more are, and the plan
+/// is that of four starts. Each would fail with a fixed count of two or of four.
+#[test]
+fn auto_starts_add_a_round_only_where_the_first_two_disagree() {
+    let auto = MultiStart::default();
+    assert_eq!((auto.starts, auto.up_to), (2, Some(4)));
+    let leg = task("leg_lift");
+    let one_basin = plan::plan_with_starts(&leg.spec, leg.solver, &leg.settings, &auto, &mut |_| {}).unwrap();
+    assert_eq!(one_basin.starts.len(), 2, "the first two agree: no second round");
+    let (a, b) = (one_basin.starts[0].objective, one_basin.starts[1].objective);
+    assert!((a - b).abs() <= 1e-3 * a.min(b), "{a} and {b} agree");
+
+    let t = task("double_pendulum");
+    let plan = plan::plan_with_starts(&t.spec, t.solver, &t.settings, &auto, &mut |_| {}).unwrap();
+    let two = plan::plan_with_starts(&t.spec, t.solver, &t.settings, &MultiStart::exactly(2), &mut |_| {}).unwrap();
+    let four = plan::plan_with_starts(&t.spec, t.solver, &t.settings, &MultiStart::exactly(4), &mut |_| {}).unwrap();
+    let (f0, f1) = (two.starts[0].objective, two.starts[1].objective);
+    assert!((f0 - f1).abs() > 1e-3 * f0.min(f1), "the first two disagree: {f0} and {f1}");
+    assert_eq!(plan.starts.len(), 4, "a second round where the first two disagree");
+    assert_eq!(plan.x, four.x, "the plan of four starts");
+    assert_eq!(
+        plan.starts[..2].iter().map(|s| s.objective).collect::<Vec<_>>(),
+        vec![f0, f1],
+        "the first round is the two starts"
+    );
 }
 
 /// Re-planning from a converged plan's control points and multipliers converges at once: no walking away.

@@ -133,7 +133,7 @@ fn lift(more: &str) -> (Task, Vec<mintorque::plan::NodeValues>) {
 /// The task `text` planned (converged) and the dense samples (1000 per second) of its plan.
 fn plan_lift(text: &str) -> (Task, Vec<mintorque::plan::NodeValues>) {
     let mut task = task(text);
-    task.multistart.starts = 1;
+    task.multistart = mintorque::plan::MultiStart::single();
     let plan = task.plan(&mut |_| {}).unwrap();
     assert!(plan.converged(), "{text}: {}", plan.outcome.reason);
     let times: Vec<f64> = (0..=1000).map(|k| k as f64 / 1000.0).collect();

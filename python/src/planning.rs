@@ -103,7 +103,7 @@ pub fn plan(
             other => Err(error(format!("solver: \"{other}\" is not a solver: structured, newton or auglag-bfgs"))),
         })
         .transpose()?;
-    let overrides = Overrides { solver, control_points, starts, refine: false };
+    let overrides = Overrides { solver, control_points, starts: starts.map(mintorque::plan::Starts::Exactly), refine: false };
     let mut task = load_task(py, task, &overrides)?;
     let cancel = mintorque::solve::Cancel::default();
     task.settings.cancel = cancel.clone();

@@ -9,6 +9,12 @@
 //! the guess). The same `seed` gives the same starts, on any machine and any number of threads, and the
 //! choice is deterministic: converged before not converged, then the least effort, then the lowest index.
 //! Start 0 is the single-start plan, so more starts never return a worse plan.
+//!
+//! By default (`starts = "auto"`) the starts come in rounds ([`MultiStart::up_to`]): two, and two more
+//! while no two converged starts agree on the least effort (within [`AGREE`]) — on a landscape with one
+//! basin the first two agree and the solve costs what two starts cost; where they disagree there are
+//! other basins, and the next two look for a lower one. The rounds are fixed in size, whatever the
+//! number of threads, so the plan is too.
 
 use super::guess::initial_contact_forces;
 use super::run::Run;
@@ -17,28 +23,116 @@ use crate::error::{Error, Result};
 use crate::solve::{Outcome, Progress};
 use rayon::prelude::*;
 
+/// Two converged starts whose efforts differ by less than this fraction of the least have found the same
+/// optimum (0.1 %: the bar for "as good as IPOPT's").
+pub const AGREE: f64 = 1e-3;
+
 /// How many starts, and the seed of their perturbations.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct MultiStart {
-    /// Starting points solved (1 = the guess alone).
+    /// Starting points solved at once, in parallel (1 = the guess alone): the first round.
     pub starts: usize,
+    /// `Some(k)`: while no two converged starts agree on the least effort (within [`AGREE`]), solve
+    /// `starts` more, up to `k` in all. `None`: `starts` only.
+    pub up_to: Option<usize>,
     /// Seed of the perturbed starts.
     pub seed: u64,
 }
 
 impl Default for MultiStart {
-    /// The task file's default: two starts — the guess and one perturbation — seed 1. On the bundled
-    /// examples the second start lowers the effort by 3–28 % on six of fourteen and never raises it; a
-    /// third and fourth add little (docs/performance.md). On two cores the two run side by side.
+    /// The task file's default (`starts = "auto"`): two starts — the guess and one perturbation — and two
+    /// more where they disagree; seed 1. On the 35 tasks of docs/performance.md this finds the best of four
+    /// starts on every one, at the cost of two on the 21 whose first two agree. On two cores each round's
+    /// two run side by side.
     fn default() -> Self {
-        MultiStart { starts: 2, seed: 1 }
+        MultiStart { starts: 2, up_to: Some(4), seed: 1 }
     }
 }
 
 impl MultiStart {
     /// The guess alone.
     pub fn single() -> Self {
-        MultiStart { starts: 1, ..MultiStart::default() }
+        MultiStart::exactly(1)
+    }
+
+    /// Exactly `k` starts, seed 1 (`starts = k` in a task file).
+    pub fn exactly(k: usize) -> Self {
+        MultiStart { starts: k, up_to: None, ..MultiStart::default() }
+    }
+
+    /// The most starts this may solve.
+    pub fn most(&self) -> usize {
+        self.up_to.map_or(self.starts, |k| k.max(self.starts))
+    }
+}
+
+/// `[solver] starts` in a task file: `"auto"` (the default: [`MultiStart::default`]'s rounds) or a number
+/// of starts solved at once and no more.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Starts {
+    /// Two starts, and two more where they disagree.
+    #[default]
+    Auto,
+    /// Exactly this many.
+    Exactly(usize),
+}
+
+impl Starts {
+    /// The multi-start these starts and `seed` make.
+    pub fn with_seed(self, seed: u64) -> MultiStart {
+        match self {
+            Starts::Auto => MultiStart { seed, ..MultiStart::default() },
+            Starts::Exactly(k) => MultiStart { seed, ..MultiStart::exactly(k) },
+        }
+    }
+}
+
+impl std::str::FromStr for Starts {
+    type Err = String;
+    /// `auto` or a whole number (`--starts`).
+    fn from_str(s: &str) -> std::result::Result<Self, String> {
+        match s.trim() {
+            "auto" => Ok(Starts::Auto),
+            k => {
+                k.parse().map(Starts::Exactly).map_err(|_| format!("expected \"auto\" or a whole number of starts, got \"{s}\""))
+            }
+        }
+    }
+}
+
+impl serde::Serialize for Starts {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        match self {
+            Starts::Auto => s.serialize_str("auto"),
+            Starts::Exactly(k) => s.serialize_u64(*k as u64),
+        }
+    }
+}
+
+impl<'de> serde::Deserialize<'de> for Starts {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        struct Visitor;
+        impl serde::de::Visitor<'_> for Visitor {
+            type Value = Starts;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("\"auto\" or a whole number of starts")
+            }
+            fn visit_u64<E: serde::de::Error>(self, k: u64) -> std::result::Result<Starts, E> {
+                usize::try_from(k).map(Starts::Exactly).map_err(|_| E::custom(format!("{k} starts are too many")))
+            }
+            fn visit_i64<E: serde::de::Error>(self, k: i64) -> std::result::Result<Starts, E> {
+                u64::try_from(k)
+                    .map_err(|_| E::custom(format!("starts must be at least 1, got {k}")))
+                    .and_then(|k| self.visit_u64(k))
+            }
+            fn visit_str<E: serde::de::Error>(self, s: &str) -> std::result::Result<Starts, E> {
+                match s {
+                    "auto" => Ok(Starts::Auto),
+                    _ => Err(E::custom(format!("expected \"auto\" or a whole number of starts, got \"{s}\""))),
+                }
+            }
+        }
+        d.deserialize_any(Visitor)
     }
 }
 
@@ -92,13 +186,13 @@ pub fn next_signed(state: &mut u64) -> f64 {
     2.0 * (z >> 11) as f64 / (1u64 << 53) as f64 - 1.0
 }
 
-/// The starting points: `x0` and `multi.starts − 1` perturbations of it.
+/// The starting points: `x0` and `multi.most() − 1` perturbations of it.
 pub(super) fn guesses(spec: &Spec, problem: &mut Transcription, x0: &[f64], multi: &MultiStart) -> Result<Vec<Vec<f64>>> {
     if multi.starts == 0 {
         return Err(Error::task(&spec.origin, "solver.starts", "must be at least 1"));
     }
     let mut all = vec![x0.to_vec()];
-    for k in 1..multi.starts {
+    for k in 1..multi.most() {
         all.push(perturbed(spec, problem, x0, start_seed(multi.seed, k))?);
     }
     Ok(all)
@@ -135,9 +229,37 @@ fn perturbed(spec: &Spec, problem: &mut Transcription, x0: &[f64], seed: u64) ->
     Ok(x)
 }
 
+/// Runs `solve` from the guesses round by round, `multi.starts` at a time, until the rounds end
+/// ([`MultiStart::up_to`], [`agreed`]) or the guesses do. The first of all runs on this thread with
+/// `observer`.
+pub(super) fn run_rounds<F>(
+    guesses: &[Vec<f64>],
+    multi: &MultiStart,
+    observer: &mut dyn FnMut(&Progress),
+    solve: F,
+) -> Result<Vec<Run>>
+where
+    F: Fn(&[f64], &mut dyn FnMut(&Progress)) -> Result<Run> + Sync,
+{
+    let round = multi.starts.max(1);
+    let mut runs = run_all(&guesses[..round.min(guesses.len())], observer, &solve)?;
+    while runs.len() < guesses.len() && !agreed(&runs) {
+        let next = &guesses[runs.len()..(runs.len() + round).min(guesses.len())];
+        runs.extend(run_all(next, &mut |_| {}, &solve)?);
+    }
+    Ok(runs)
+}
+
+/// Whether two converged runs reach the least effort of all, within [`AGREE`] of it.
+pub(super) fn agreed(runs: &[Run]) -> bool {
+    let efforts = || runs.iter().filter(|r| r.outcome.converged && r.outcome.objective.is_finite()).map(|r| r.outcome.objective);
+    let Some(least) = efforts().min_by(f64::total_cmp) else { return false };
+    efforts().filter(|&f| f <= least + AGREE * least.abs()).count() >= 2
+}
+
 /// Runs `solve` from every guess: the first on this thread with `observer`, the others in parallel on the
 /// rayon pool with no observer.
-pub(super) fn run_all<F>(guesses: &[Vec<f64>], observer: &mut dyn FnMut(&Progress), solve: F) -> Result<Vec<Run>>
+fn run_all<F>(guesses: &[Vec<f64>], observer: &mut dyn FnMut(&Progress), solve: &F) -> Result<Vec<Run>>
 where
     F: Fn(&[f64], &mut dyn FnMut(&Progress)) -> Result<Run> + Sync,
 {

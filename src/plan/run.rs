@@ -17,7 +17,8 @@ pub fn plan(spec: &Spec, solver: SolverKind, settings: &Settings, observer: &mut
     plan_with_starts(spec, solver, settings, &MultiStart::single(), observer)
 }
 
-/// [`plan`] from `multi.starts` starting points (a task file's default is [`MultiStart::default`], two) — the guess and deterministic perturbations of it (see
+/// [`plan`] from several starting points (`multi`; a task file's default is [`MultiStart::default`]: two, and
+/// two more where they disagree) — the guess and deterministic perturbations of it (see
 /// [`super::multistart`]) — solved in parallel; returns the best plan (converged before not, then least
 /// effort), with every start's outcome in [`Plan::starts`]. `observer` sees the first start's progress.
 pub fn plan_with_starts(
@@ -34,7 +35,9 @@ pub fn plan_with_starts(
     let initial_objective = objective_at(&mut problem, &x0).map_err(|e| Error::task(&spec.origin, "initial guess", e))?;
     let guesses = multistart::guesses(spec, &mut problem, &x0, multi)?;
     let deadline = settings.time_limit.map(|t| started + Duration::from_secs_f64(t));
-    let runs = multistart::run_all(&guesses, observer, |x, observer| run_start(spec, solver, settings, deadline, x, observer))?;
+    let runs = multistart::run_rounds(&guesses, multi, observer, |x, observer| {
+        run_start(spec, solver, settings, deadline, x, observer)
+    })?;
     let best = multistart::best(&runs);
     let starts = runs.iter().enumerate().map(|(k, r)| StartReport::new(k, multi, &r.outcome, r.polished, r.seconds)).collect();
     let run = runs.into_iter().nth(best).expect("at least one start");

@@ -26,9 +26,10 @@ pub(crate) enum Command {
         /// Fix the number of B-spline control points per joint (no refinement unless --refine).
         #[arg(long)]
         control_points: Option<usize>,
-        /// Override the number of starting points solved in parallel (the best plan is kept).
-        #[arg(long)]
-        starts: Option<usize>,
+        /// Override the starting points solved in parallel (the best plan is kept): a number, or "auto" (the
+        /// default: two, and two more where they disagree).
+        #[arg(long, value_parser = clap::value_parser!(mintorque::plan::Starts))]
+        starts: Option<mintorque::plan::Starts>,
         /// Refine the number of control points until the effort changes by less than 0.5 % (the default when
         /// the task does not fix discretization.control_points).
         #[arg(long)]

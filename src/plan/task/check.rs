@@ -130,7 +130,9 @@ fn settings(file: &TaskFile, origin: &str, at: &At) -> Result<()> {
     at("solver.tolerance", positive(&TOLERANCE, s.tolerance))?;
     at("solver.violation_tolerance", positive(&TOLERANCE, s.violation_tolerance))?;
     count("solver.max_iterations", s.max_iterations, 1, MAX_ITERATIONS)?;
-    count("solver.starts", file.solver.starts, 1, MAX_STARTS)?;
+    if let crate::plan::Starts::Exactly(k) = file.solver.starts {
+        count("solver.starts", k, 1, MAX_STARTS)?;
+    }
     if let Some(t) = s.time_limit {
         at("solver.time_limit", positive(&TIME_LIMIT, t))?;
     }

@@ -102,7 +102,7 @@ impl Task {
             time_limit: s.time_limit,
             ..Settings::default()
         };
-        let multistart = MultiStart { starts: file.solver.starts, seed: file.solver.seed };
+        let multistart = file.solver.starts.with_seed(file.solver.seed);
         let refinement = file.discretization.refines().then(Refinement::default);
         Ok(Task {
             path: path.to_path_buf(),

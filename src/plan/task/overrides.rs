@@ -13,7 +13,7 @@ pub struct Overrides {
     /// `discretization.control_points` (fixes N: no refinement unless `refine`).
     pub control_points: Option<usize>,
     /// `solver.starts`.
-    pub starts: Option<usize>,
+    pub starts: Option<crate::plan::Starts>,
     /// `discretization.refine = true`.
     pub refine: bool,
 }

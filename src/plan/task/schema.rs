@@ -540,9 +540,10 @@ pub struct SolverSection {
     /// The solver (default "structured").
     #[serde(default = "structured")]
     pub method: SolverKind,
-    /// Starting points solved in parallel, the best plan kept (`plan::multistart`).
-    #[serde(default = "default_starts")]
-    pub starts: usize,
+    /// Starting points solved in parallel, the best plan kept (`plan::multistart`): `"auto"` (default: two,
+    /// and two more where they disagree) or a number.
+    #[serde(default)]
+    pub starts: crate::plan::Starts,
     /// Seed of the perturbed starts.
     #[serde(default = "default_seed")]
     pub seed: u64,
@@ -551,9 +552,6 @@ pub struct SolverSection {
     pub settings: SolverSettings,
 }
 
-fn default_starts() -> usize {
-    crate::plan::MultiStart::default().starts
-}
 fn default_seed() -> u64 {
     crate::plan::MultiStart::default().seed
 }
@@ -566,7 +564,7 @@ impl Default for SolverSection {
     fn default() -> Self {
         SolverSection {
             method: SolverKind::Structured,
-            starts: default_starts(),
+            starts: crate::plan::Starts::Auto,
             seed: default_seed(),
             settings: SolverSettings::default(),
         }
