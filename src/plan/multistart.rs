@@ -6,7 +6,8 @@
 //! start and goal stay exact — with `aᵢ` uniform in `±min(¼ range, 30°)` from a SplitMix64 stream seeded by
 //! `seed` and `k`; a joint that touches a limit in the guess is bent away from it. The bumped control
 //! points are clamped into the joint's limits and the contact forces are refitted (least squares, as for
-//! the guess). The same `seed` gives the same starts, on any machine and any number of threads, and the
+//! the guess). A bend that pushes two solids into each other deeper than the guess does is halved, up to
+//! four times ([`perturb`]): a start with a hand through a thigh cannot get out of it. The same `seed` gives the same starts, on any machine and any number of threads, and the
 //! choice is deterministic: converged before not converged, then the least effort, then the lowest index.
 //! Start 0 is the single-start plan, so more starts never return a worse plan.
 //!
@@ -16,7 +17,8 @@
 //! other basins, and the next two look for a lower one. The rounds are fixed in size, whatever the
 //! number of threads, so the plan is too.
 
-use super::guess::initial_contact_forces;
+mod perturb;
+
 use super::run::Run;
 use super::{Spec, Transcription};
 use crate::error::{Error, Result};
@@ -193,40 +195,9 @@ pub(super) fn guesses(spec: &Spec, problem: &mut Transcription, x0: &[f64], mult
     }
     let mut all = vec![x0.to_vec()];
     for k in 1..multi.most() {
-        all.push(perturbed(spec, problem, x0, start_seed(multi.seed, k))?);
+        all.push(perturb::perturbed(spec, problem, x0, start_seed(multi.seed, k))?);
     }
     Ok(all)
-}
-
-/// `x0` with every free joint bent by a bump (module docs), contact forces refitted.
-fn perturbed(spec: &Spec, problem: &mut Transcription, x0: &[f64], seed: u64) -> Result<Vec<f64>> {
-    let layout = problem.layout.clone();
-    let (nv, n) = (layout.nv, layout.n_ctrl);
-    let mut ctrl = vec![0.0; n * nv];
-    let mut lambda = vec![0.0; n * layout.n_lambda];
-    layout.unpack(x0, &problem.fixed_values, &mut ctrl, &mut lambda);
-    let mut state = seed;
-    for i in 0..nv {
-        let limits = &spec.model.joints[i + 1].limits;
-        let range = limits.upper - limits.lower;
-        let reach = if range.is_finite() { (0.25 * range).min(30f64.to_radians()) } else { 30f64.to_radians() };
-        let mut a = reach * next_signed(&mut state);
-        let column = || (0..n).map(|j| ctrl[j * nv + i]);
-        let near = 0.01 * if range.is_finite() { range } else { 1.0 };
-        if column().any(|c| c >= limits.upper - near) {
-            a = -a.abs();
-        } else if column().any(|c| c <= limits.lower + near) {
-            a = a.abs();
-        }
-        for j in (0..n).filter(|&j| layout.joint_var(j, i).is_some()) {
-            let t = j as f64 / (n - 1) as f64; // the control point's place in time, near its Greville abscissa
-            let c = &mut ctrl[j * nv + i];
-            *c = (*c + a * (std::f64::consts::PI * t).sin()).clamp(limits.lower, limits.upper);
-        }
-    }
-    let mut x = layout.pack(&ctrl, &lambda);
-    initial_contact_forces(problem, &mut x)?;
-    Ok(x)
 }
 
 /// Runs `solve` from the guesses round by round, `multi.starts` at a time, until the rounds end
