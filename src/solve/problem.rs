@@ -157,6 +157,19 @@ impl Evaluation {
         })
     }
 
+    /// Buffers for the values only, for [`Problem::evaluate`] with `want_jac = false` (the Jacobians have
+    /// their rows but no entries, so building them costs nothing).
+    pub fn values_only(dims: Dims) -> Self {
+        Evaluation {
+            r: vec![0.0; dims.n_res],
+            h: vec![0.0; dims.n_eq],
+            g: vec![0.0; dims.n_ineq],
+            jr: SparseMatrix::without_entries(dims.n_res, dims.n),
+            jh: SparseMatrix::without_entries(dims.n_eq, dims.n),
+            jg: SparseMatrix::without_entries(dims.n_ineq, dims.n),
+        }
+    }
+
     /// The Jacobian of one kind of rows.
     pub fn jacobian(&self, family: RowFamily) -> &SparseMatrix {
         match family {

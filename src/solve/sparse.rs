@@ -85,6 +85,11 @@ impl SparseMatrix {
         Ok(SparseMatrix { ncols, row_ptr, values: vec![0.0; col_idx.len()], col_idx, runs })
     }
 
+    /// An `nrows × ncols` matrix with no entry in its pattern (a Jacobian that is not asked for).
+    pub fn without_entries(nrows: usize, ncols: usize) -> Self {
+        SparseMatrix { ncols, row_ptr: vec![0; nrows + 1], col_idx: vec![], values: vec![], runs: gram::empty_rows(nrows) }
+    }
+
     /// An `nrows × ncols` matrix with every entry in the pattern (for tests and tiny problems).
     pub fn dense_pattern(nrows: usize, ncols: usize) -> Self {
         let rows: Vec<Vec<usize>> = (0..nrows).map(|_| (0..ncols).collect()).collect();

@@ -33,6 +33,11 @@ pub(super) fn runs(row_ptr: &[usize], col_idx: &[usize]) -> Vec<Run> {
     runs
 }
 
+/// The one run of `nrows` rows without entries (none when there are no rows).
+pub(super) fn empty_rows(nrows: usize) -> Vec<Run> {
+    (nrows > 0).then_some(Run { start: 0, end: nrows, span: None, ascending: true }).into_iter().collect()
+}
+
 impl SparseMatrix {
     /// Half-bandwidth of `JᵀJ`: the largest `max(col) − min(col)` over the rows.
     pub fn gram_bandwidth(&self) -> usize {
@@ -110,6 +115,16 @@ fn row_span(cols: &[usize]) -> Option<(usize, usize)> {
 mod tests {
     use super::*;
     use crate::solve::sparse::tests::example;
+
+    #[test]
+    fn rows_without_entries_add_nothing() {
+        let m = SparseMatrix::without_entries(3, 5);
+        assert_eq!((m.nrows(), m.ncols(), m.nnz(), m.gram_bandwidth()), (3, 5, 0, 0));
+        let mut g = SymmetricMatrix::banded(5, 1);
+        m.add_gram_to(Some(&[1.0; 3]), &mut g).unwrap();
+        assert_eq!(g, SymmetricMatrix::banded(5, 1));
+        assert_eq!(SparseMatrix::without_entries(0, 2).gram_bandwidth(), 0);
+    }
 
     #[test]
     fn weighted_gram_matches_dense() {
