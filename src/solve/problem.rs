@@ -89,7 +89,8 @@ pub enum RowFamily {
 
 /// Values (and, when asked, Jacobians) at one point. Built once per solve by [`Evaluation::new`]; the
 /// problem overwrites `r`, `h`, `g` and, when `want_jac`, the Jacobians' values (which the solver zeroes
-/// before the call, so a problem may accumulate into them with [`SparseMatrix::add`]).
+/// before the call, so a problem may accumulate into them with [`SparseMatrix::add`], unless the problem
+/// says it writes them whole: [`Problem::writes_whole_jacobians`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Evaluation {
     /// Residuals `r(x)` of the objective `F = ½‖r‖²`.
@@ -229,6 +230,12 @@ pub trait Problem {
     /// with [`StopReason::EvaluationError`](super::StopReason::EvaluationError); non-finite values are caught
     /// by the solver.
     fn evaluate(&mut self, x: &[f64], want_jac: bool, out: &mut Evaluation) -> Result<(), String>;
+
+    /// Whether [`Problem::evaluate`] with `want_jac` sets every entry of the Jacobians' patterns, whatever
+    /// they held, so that the solver need not zero them before each call (default: `false`).
+    fn writes_whole_jacobians(&self) -> bool {
+        false
+    }
 
     /// Adds the second-order term of the Lagrangian's Hessian, `Σⱼ wⱼ ∇²cⱼ` over every row `cⱼ` of `r`, `h`
     /// and `g` with weights `weights = [w_r, w_h, w_g]`, at `x`, into the lower triangle of `target` (sized
