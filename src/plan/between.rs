@@ -205,7 +205,7 @@ pub(super) fn check_near(
         return Ok((vec![], vec![]));
     }
     let fail = |e: String| Error::task(&spec.origin, "transcription", e);
-    let mut eval = solve::Evaluation::new(dims, &grid.jacobian_patterns()).map_err(|e| fail(e.to_string()))?;
+    let mut eval = solve::Evaluation::values_only(dims);
     grid.evaluate(x, false, &mut eval).map_err(fail)?;
     let (n_eq, n_ineq) = (grid.n_eq_per_node(), grid.ineq_rows.len());
     let span_of = |t: f64| ((t / spec.duration * spans as f64) as usize).min(spans - 1);

@@ -89,8 +89,7 @@ pub(super) fn initial_contact_forces(problem: &mut Transcription, x: &mut [f64])
 }
 
 pub(super) fn objective_at(problem: &mut Transcription, x: &[f64]) -> std::result::Result<f64, String> {
-    let dims = problem.dims();
-    let mut eval = solve::Evaluation::new(dims, &problem.jacobian_patterns()).map_err(|e| e.to_string())?;
+    let mut eval = solve::Evaluation::values_only(problem.dims());
     problem.evaluate(x, false, &mut eval)?;
     Ok(eval.objective())
 }

@@ -150,7 +150,7 @@ impl<'a> AugmentedLagrangian<'a> {
         self.evaluations += 1;
         self.evaluated = Evaluated::Nothing;
         self.x_eval.copy_from_slice(x);
-        if want_jac {
+        if want_jac && !self.problem.writes_whole_jacobians() {
             self.eval.jr.fill_zero();
             self.eval.jh.fill_zero();
             self.eval.jg.fill_zero();

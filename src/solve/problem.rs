@@ -89,7 +89,8 @@ pub enum RowFamily {
 
 /// Values (and, when asked, Jacobians) at one point. Built once per solve by [`Evaluation::new`]; the
 /// problem overwrites `r`, `h`, `g` and, when `want_jac`, the Jacobians' values (which the solver zeroes
-/// before the call, so a problem may accumulate into them with [`SparseMatrix::add`]).
+/// before the call, so a problem may accumulate into them with [`SparseMatrix::add`], unless the problem
+/// says it writes them whole: [`Problem::writes_whole_jacobians`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Evaluation {
     /// Residuals `r(x)` of the objective `F = ½‖r‖²`.
@@ -157,6 +158,19 @@ impl Evaluation {
         })
     }
 
+    /// Buffers for the values only, for [`Problem::evaluate`] with `want_jac = false` (the Jacobians have
+    /// their rows but no entries, so building them costs nothing).
+    pub fn values_only(dims: Dims) -> Self {
+        Evaluation {
+            r: vec![0.0; dims.n_res],
+            h: vec![0.0; dims.n_eq],
+            g: vec![0.0; dims.n_ineq],
+            jr: SparseMatrix::without_entries(dims.n_res, dims.n),
+            jh: SparseMatrix::without_entries(dims.n_eq, dims.n),
+            jg: SparseMatrix::without_entries(dims.n_ineq, dims.n),
+        }
+    }
+
     /// The Jacobian of one kind of rows.
     pub fn jacobian(&self, family: RowFamily) -> &SparseMatrix {
         match family {
@@ -173,6 +187,11 @@ impl Evaluation {
 
     /// The first non-finite entry, described with `name(family, row)` (`None` if all values are finite).
     pub fn first_non_finite(&self, with_jacobians: bool, name: &dyn Fn(RowFamily, usize) -> String) -> Option<String> {
+        // Whether any value is not finite, in one pass (the common case: none, and nothing to name).
+        let jacobians = [&self.jr, &self.jh, &self.jg].map(|m| m.values()).into_iter().filter(|_| with_jacobians);
+        if [&self.r[..], &self.h, &self.g].into_iter().chain(jacobians).all(all_finite) {
+            return None;
+        }
         let vectors = [(RowFamily::Residual, &self.r), (RowFamily::Equality, &self.h), (RowFamily::Inequality, &self.g)];
         for (family, v) in vectors {
             if let Some(i) = v.iter().position(|x| !x.is_finite()) {
@@ -194,6 +213,11 @@ impl Evaluation {
     }
 }
 
+/// Whether every value is finite: one pass without branches, which the compiler vectorises.
+fn all_finite(values: &[f64]) -> bool {
+    values.iter().fold(true, |finite, v| finite & v.is_finite())
+}
+
 /// A finite-dimensional constrained least-squares problem.
 pub trait Problem {
     /// Sizes of `x`, `r`, `h` and `g`.
@@ -206,6 +230,12 @@ pub trait Problem {
     /// with [`StopReason::EvaluationError`](super::StopReason::EvaluationError); non-finite values are caught
     /// by the solver.
     fn evaluate(&mut self, x: &[f64], want_jac: bool, out: &mut Evaluation) -> Result<(), String>;
+
+    /// Whether [`Problem::evaluate`] with `want_jac` sets every entry of the Jacobians' patterns, whatever
+    /// they held, so that the solver need not zero them before each call (default: `false`).
+    fn writes_whole_jacobians(&self) -> bool {
+        false
+    }
 
     /// Adds the second-order term of the Lagrangian's Hessian, `Σⱼ wⱼ ∇²cⱼ` over every row `cⱼ` of `r`, `h`
     /// and `g` with weights `weights = [w_r, w_h, w_g]`, at `x`, into the lower triangle of `target` (sized

@@ -15,6 +15,7 @@ pub fn jacobians_match_differences(spec: &Spec, seed: u64, spread: f64) {
     let x: Vec<f64> = rng.vec(dims.n, -1.0, 1.0).iter().map(|v| v * spread).collect();
     problem.evaluate(&x, true, &mut eval).unwrap();
     let analytic = eval.clone();
+    whole_jacobians_are_written(&mut problem, &x, &analytic);
     let (mut plus, mut minus) = (eval.clone(), eval.clone());
     let h = 1e-6;
     let mut worst = 0.0f64;
@@ -51,6 +52,20 @@ pub fn jacobians_match_differences(spec: &Spec, seed: u64, spread: f64) {
         "seed {seed}: {} unknowns, {} residuals, {} equalities, {} inequalities, worst relative error {worst:.2e}",
         dims.n, dims.n_res, dims.n_eq, dims.n_ineq
     );
+}
+
+/// The problem writes every Jacobian entry (the solver does not zero them before evaluating): evaluated
+/// into Jacobians full of NaN, it gives `analytic`, evaluated at `x` into zeroed ones, bit for bit.
+fn whole_jacobians_are_written(problem: &mut Transcription, x: &[f64], analytic: &Evaluation) {
+    assert!(problem.writes_whole_jacobians());
+    let mut stale = analytic.clone();
+    for j in [&mut stale.jr, &mut stale.jh, &mut stale.jg] {
+        j.values_mut().fill(f64::NAN);
+    }
+    problem.evaluate(x, true, &mut stale).unwrap();
+    for (a, b) in [(&stale.jr, &analytic.jr), (&stale.jh, &analytic.jh), (&stale.jg, &analytic.jg)] {
+        assert!(a.values().iter().zip(b.values()).all(|(u, v)| u.to_bits() == v.to_bits()));
+    }
 }
 
 /// The second-order term against central differences of the weighted gradient, at a random `x` (entries

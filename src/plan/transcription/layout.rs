@@ -23,6 +23,20 @@ pub struct Layout {
     /// Contact forces are stored as `λ / lambda_scale` (the figure's weight, N) so that every unknown is of
     /// order one — Levenberg–Marquardt's damping then treats radians and newtons alike.
     pub lambda_scale: f64,
+    /// The four control points from each `first` (fixed with the layout, looked up at every row).
+    windows: Vec<Window>,
+}
+
+/// The four control points whose basis functions start at one control point `first`.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Window {
+    /// Which block of `nv` motion columns each point's unknowns are (its owner's for a shared one), `None`
+    /// if fixed: [`Layout::motion_slots`].
+    pub(super) slots: [Option<usize>; 4],
+    /// Which of the four points owns each point's unknowns (itself if it owns them).
+    pub(super) owner: [usize; 4],
+    /// How many of the points up to each one (included) own unknowns.
+    pub(super) owned_through: [usize; 4],
 }
 
 impl Layout {
@@ -40,7 +54,32 @@ impl Layout {
             block_start.push(n);
             n += if !fixed[j] && owner[j] == j { nv } else { 0 } + n_lambda;
         }
-        Layout { nv, n_ctrl, n_lambda, fixed, owner, block_start, n, lambda_scale }
+        let mut layout = Layout { nv, n_ctrl, n_lambda, fixed, owner, block_start, n, lambda_scale, windows: vec![] };
+        layout.windows = (0..n_ctrl.saturating_sub(3)).map(|first| layout.window(first)).collect();
+        layout
+    }
+
+    /// The window from `first`, computed.
+    fn window(&self, first: usize) -> Window {
+        let mut w = Window { slots: [None; 4], owner: [0, 1, 2, 3], owned_through: [0; 4] };
+        let mut owned = 0;
+        for a in 0..4 {
+            let j = first + a;
+            if self.owns(j) {
+                w.slots[a] = Some(owned);
+                owned += 1;
+            } else if !self.fixed[j] {
+                w.owner[a] = self.owner[j] - first; // the owner precedes it in the same window
+                w.slots[a] = w.slots[w.owner[a]];
+            }
+            w.owned_through[a] = owned;
+        }
+        w
+    }
+
+    /// The window from `first` (see [`Window`]).
+    pub(super) fn window_at(&self, first: usize) -> &Window {
+        &self.windows[first]
     }
 
     /// Whether control point `j` holds joint unknowns of its own (neither fixed nor sharing another's).
@@ -57,18 +96,7 @@ impl Layout {
     /// For the node whose four basis functions start at control point `first`: which block of `nv` motion
     /// columns each of the four control points' unknowns are (its owner's for a shared one), `None` if fixed.
     pub fn motion_slots(&self, first: usize) -> [Option<usize>; 4] {
-        let mut slots = [None; 4];
-        let mut next = 0;
-        for a in 0..4 {
-            let j = first + a;
-            if self.owns(j) {
-                slots[a] = Some(next);
-                next += 1;
-            } else if !self.fixed[j] {
-                slots[a] = slots[self.owner[j] - first]; // the owner precedes it in the same window
-            }
-        }
-        slots
+        self.windows[first].slots
     }
 
     /// Index in `x` of contact-force component `m` at control point `j`.

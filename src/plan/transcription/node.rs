@@ -256,17 +256,10 @@ impl Transcription<'_> {
 /// and its contact forces. In column order: per control point its own motion block if it owns one, then its
 /// `n_lambda` forces.
 pub(super) fn supported_offsets(layout: &Layout, first: usize, width: usize) -> ([Option<usize>; 4], [usize; 4]) {
-    let (mut motion, mut lambda, mut pos) = ([None; 4], [0; 4], 0);
-    for a in 0..4 {
-        let j = first + a;
-        if layout.owns(j) {
-            motion[a] = Some(pos);
-            pos += width;
-        } else if !layout.fixed[j] {
-            motion[a] = motion[layout.owner[j] - first]; // the owner precedes it in the same window
-        }
-        lambda[a] = pos;
-        pos += layout.n_lambda;
-    }
+    let (w, nl) = (layout.window_at(first), layout.n_lambda);
+    // A point's motion block follows the blocks and forces of the points before its owner.
+    let motion = std::array::from_fn(|a| w.slots[a].map(|slot| slot * width + w.owner[a] * nl));
+    // Its forces follow the blocks up to it and the forces before it.
+    let lambda = std::array::from_fn(|a| w.owned_through[a] * width + a * nl);
     (motion, lambda)
 }

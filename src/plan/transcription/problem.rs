@@ -82,6 +82,13 @@ impl Problem for Transcription<'_> {
         Ok(())
     }
 
+    /// Every row's writer sets its values or zeroes them before adding (`chain_rule`, `chain_rule_on`, the
+    /// limit, goal and term rows; a torque-change row is zeroed by its first node). The transcription
+    /// tests check it on every kind of row.
+    fn writes_whole_jacobians(&self) -> bool {
+        true
+    }
+
     fn add_second_order(&mut self, x: &[f64], weights: [&[f64]; 3], target: &mut SymmetricMatrix) -> bool {
         if self.spec.objective != Objective::Torque {
             return false;

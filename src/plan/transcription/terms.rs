@@ -285,8 +285,7 @@ impl Transcription<'_> {
     /// `[torque, strength, torque_change, acceleration, jerk, posture]` as [`Terms::FORMULAS`] lists them.
     pub fn term_values(&mut self, x: &[f64]) -> Result<[(&'static str, f64, f64); 6], String> {
         use crate::solve::Problem;
-        let dims = self.dims();
-        let mut eval = Evaluation::new(dims, &self.jacobian_patterns()).map_err(|e| e.to_string())?;
+        let mut eval = Evaluation::values_only(self.dims());
         self.evaluate(x, false, &mut eval)?;
         let nv = self.layout.nv;
         let half_sum = |rows: std::ops::Range<usize>| 0.5 * eval.r[rows].iter().map(|v| v * v).sum::<f64>();
