@@ -82,9 +82,8 @@ fn deepest_penetration(problem: &mut Transcription, x: &[f64]) -> Result<f64> {
     if !problem.ineq_rows.iter().any(|r| matches!(r, IneqRow::Collision(_))) {
         return Ok(0.0);
     }
-    let fail = |e: String| Error::task(&problem.spec.origin, "initial guess", e);
-    let mut eval = Evaluation::new(problem.dims(), &problem.jacobian_patterns()).map_err(|e| fail(e.to_string()))?;
-    problem.evaluate(x, false, &mut eval).map_err(fail)?;
+    let mut eval = Evaluation::values_only(problem.dims());
+    problem.evaluate(x, false, &mut eval).map_err(|e| Error::task(&problem.spec.origin, "initial guess", e))?;
     let node_rows = problem.nodes.t.len() * per;
     let depth = (0..node_rows.min(eval.g.len()))
         .filter(|&k| matches!(problem.ineq_rows[k % per], IneqRow::Collision(_)))
