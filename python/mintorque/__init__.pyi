@@ -62,7 +62,7 @@ class PlanResult:
 def plan(
     task: Union[PathLike, Dict[str, Any]],
     solver: Optional[str] = None,
-    starts: Optional[int] = None,
+    starts: Union[int, str, None] = None,
     control_points: Optional[int] = None,
 ) -> PlanResult:
     """Plans a task file (path) or a dict with its structure; the GIL is released while it solves."""

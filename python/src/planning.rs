@@ -83,8 +83,17 @@ fn load_task(py: Python<'_>, task: &Bound<'_, PyAny>, overrides: &Overrides) -> 
     Task::load_with(&path, overrides).map_err(error)
 }
 
-/// Plans `task` (a path or a dict) as `mintorque plan` does; `solver`, `starts` and `control_points`
-/// override the task's. Raises `MintorqueError` on bad input; a plan that did not converge is returned
+/// `starts` as Python gives it: a whole number, or the text `"auto"` (as `--starts`).
+fn starts_of(starts: &Bound<'_, PyAny>) -> PyResult<mintorque::plan::Starts> {
+    if let Ok(k) = starts.extract::<usize>() {
+        return Ok(mintorque::plan::Starts::Exactly(k));
+    }
+    let text: String = starts.extract().map_err(|_| error("starts: expected \"auto\" or a whole number of starts"))?;
+    text.parse().map_err(|m: String| error(format!("starts: {m}")))
+}
+
+/// Plans `task` (a path or a dict) as `mintorque plan` does; `solver`, `starts` (a whole number or
+/// `"auto"`) and `control_points` override the task's. Raises `MintorqueError` on bad input; a plan that did not converge is returned
 /// with `converged = False` and its reason.
 #[pyfunction]
 #[pyo3(signature = (task, solver = None, starts = None, control_points = None))]
@@ -92,9 +101,10 @@ pub fn plan(
     py: Python<'_>,
     task: &Bound<'_, PyAny>,
     solver: Option<&str>,
-    starts: Option<usize>,
+    starts: Option<&Bound<'_, PyAny>>,
     control_points: Option<usize>,
 ) -> PyResult<PlanResult> {
+    let starts = starts.map(starts_of).transpose()?;
     let solver = solver
         .map(|s| match s {
             "structured" => Ok(SolverKind::Structured),
@@ -103,7 +113,7 @@ pub fn plan(
             other => Err(error(format!("solver: \"{other}\" is not a solver: structured, newton or auglag-bfgs"))),
         })
         .transpose()?;
-    let overrides = Overrides { solver, control_points, starts: starts.map(mintorque::plan::Starts::Exactly), refine: false };
+    let overrides = Overrides { solver, control_points, starts, refine: false };
     let mut task = load_task(py, task, &overrides)?;
     let cancel = mintorque::solve::Cancel::default();
     task.settings.cancel = cancel.clone();

@@ -97,6 +97,19 @@ def test_a_misspelt_task_field_raises_naming_it():
         mintorque.plan(PENDULUM, solver="fastest")
 
 
+def test_starts_take_a_number_or_auto():
+    three = mintorque.plan(PENDULUM, starts=3)
+    assert len(three.summary["starts"]) == 3
+    auto = mintorque.plan(PENDULUM, starts="auto")
+    # The automatic rule runs rounds of two starts: two where they agree, four where they do not.
+    assert len(auto.summary["starts"]) in (2, 4)
+    assert auto.effort == mintorque.plan(PENDULUM).effort
+    with pytest.raises(mintorque.MintorqueError, match='starts: expected "auto" or a whole number of starts, got "many"'):
+        mintorque.plan(PENDULUM, starts="many")
+    with pytest.raises(mintorque.MintorqueError, match="starts"):
+        mintorque.plan(PENDULUM, starts=2.5)
+
+
 def test_planning_releases_the_gil():
     ticks = []
     stop = threading.Event()

@@ -76,7 +76,8 @@ impl Solver for AugLagLevenbergMarquardt {
 }
 
 /// The structured solver, escalating to the second-order model after `escalate_after` steps of one inner
-/// solve (`None`: Gauss–Newton throughout — the opposite condition, for measuring what escalation buys).
+/// solve, or from the first step of a warm start (`None`: Gauss–Newton throughout — the opposite condition,
+/// for measuring what escalation buys).
 pub(crate) fn solve_structured(
     problem: &mut dyn Problem,
     x0: &[f64],
@@ -84,8 +85,11 @@ pub(crate) fn solve_structured(
     observer: &mut dyn FnMut(&Progress),
     escalate_after: Option<usize>,
 ) -> Outcome {
+    // A warm start is near a solution, where Gauss–Newton only crawls (linearly, on large residuals): the
+    // curvature from the first step (35 tasks: 7715 → 6975 iterations; docs/performance.md).
+    let at_once = settings.warm_start.is_some() && escalate_after.is_some();
     let inner = |eval: &Evaluation| {
-        let lm = LevenbergMarquardt::new(eval, false);
+        let lm = LevenbergMarquardt::new(eval, at_once);
         // Escalate sooner where the exact term is cheap: its cost per model grows with the band (≈ 4 nv).
         let k = escalate_after.map(|max| ((0.7 * lm.gram.bandwidth() as f64) as usize).clamp(ESCALATE_SOONEST, max));
         LevenbergMarquardt { escalate_after: k, ..lm }
