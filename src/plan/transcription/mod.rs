@@ -29,6 +29,7 @@ mod node_gradient;
 mod objective;
 mod problem;
 mod root;
+mod root_gradient;
 mod strength;
 mod terms;
 mod values;

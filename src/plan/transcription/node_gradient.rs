@@ -20,56 +20,65 @@ impl Transcription<'_> {
     /// `∇φ` at the state in `self.work` into `out`: `[∂/∂q, ∂/∂q̇, ∂/∂q̈, ∂/∂λ̃]`. Leaves the active torque
     /// in `work.tau`. `placed`: the engine's placements are those of `work.q` already.
     pub(super) fn node_gradient(&mut self, out: &mut [f64], placed: bool) {
-        let (spec, nv) = (self.spec, self.layout.nv);
         self.effective_weights();
         if !self.free.dofs.is_empty() {
-            return self.node_gradient_of_rows(out);
+            return self.free_node_gradient(out, placed);
         }
-        let h = &self.hess;
-        let ow = &h.omega_w;
+        let ow = &self.hess.omega_w;
         let u0 = Motion::new(Vec3::new(ow[0], ow[1], ow[2]), Vec3::new(ow[3], ow[4], ow[5]));
+        let omega = std::mem::take(&mut self.hess.omega_hat);
+        self.contracted_gradient(out, placed, &omega, &u0);
+        self.hess.omega_hat = omega;
+        if self.spec.strength.is_some() {
+            self.add_strength_gradient(out);
+        }
+    }
+
+    /// `∇(ωᵀτ + u₀·W)` at the state in `self.work` into `out` for given weights `ω` (nv) and `u₀`, `τ` the
+    /// torques with the passive ones, loads and contact forces (module docs; no strength terms); `τ` into
+    /// `work.tau`. `placed`: the engine's placements are those of `work.q` already.
+    pub(super) fn contracted_gradient(&mut self, out: &mut [f64], placed: bool, omega: &[f64], u0: &Motion) {
+        let (spec, nv) = (self.spec, self.layout.nv);
         let (w, data) = (&mut self.work, &mut self.data);
         out.fill(0.0);
         let (g_q, rest) = out.split_at_mut(nv);
         let (g_v, rest) = rest.split_at_mut(nv);
         let (g_a, g_l) = rest.split_at_mut(nv);
-        // ∇(ω̂ᵀτ_ID + ω_W·W_ID), and τ = τ_ID
+        // ∇(ωᵀτ_ID + u₀·W_ID), and τ = τ_ID
         let z = (&w.q[..], &w.qd[..], &w.qdd[..]);
         let gradient = if placed { rnea_gradient_placed } else { rnea_gradient };
-        gradient(&spec.model, data, z, &spec.gravity, None, &h.omega_hat, &u0, (&mut *g_q, &mut *g_v, g_a));
+        gradient(&spec.model, data, z, &spec.gravity, None, omega, u0, (&mut *g_q, &mut *g_v, g_a));
         w.tau.copy_from_slice(data.tau.as_slice());
-        // τ −= τ_passive(q, q̇) = −k(q − q₀) − d q̇:  ∂φ/∂qᵢ += ω̂ᵢ kᵢ, ∂φ/∂q̇ᵢ += ω̂ᵢ dᵢ
+        // τ −= τ_passive(q, q̇) = −k(q − q₀) − d q̇:  ∂φ/∂qᵢ += ωᵢ kᵢ, ∂φ/∂q̇ᵢ += ωᵢ dᵢ
         for i in 0..nv {
             let p = &spec.model.joints[i + 1].passive;
             w.tau[i] -= p.torque(w.q[i], w.qd[i]);
-            g_q[i] += h.omega_hat[i] * p.stiffness;
-            g_v[i] += h.omega_hat[i] * p.damping;
+            g_q[i] += omega[i] * p.stiffness;
+            g_v[i] += omega[i] * p.damping;
         }
         for (l, load) in spec.loads.iter().enumerate() {
             let p = kinematics::frame_placement(&spec.model, data, load.frame).translation;
             let path = &self.load_paths[l];
-            world_force_gradient(data, path, &p, &load.force, (&h.omega_hat, &u0), &mut w.scratch, g_q, &mut w.tau);
+            world_force_gradient(data, path, &p, &load.force, (omega, u0), &mut w.scratch, g_q, &mut w.tau);
         }
         for (c, contact) in spec.contacts.iter().enumerate() {
             let info = &self.contacts[c];
             let p = kinematics::frame_placement(&spec.model, data, contact.frame).translation;
             let f = info.directions.iter().enumerate().fold(Vec3::zeros(), |f, (m, e)| f + e * w.lambda[info.offset + m]);
-            world_force_gradient(data, &info.path, &p, &f, (&h.omega_hat, &u0), &mut w.scratch, g_q, &mut w.tau);
-            // ∂φ/∂λ̃_m = −(Σ_{i on the path} ω̂ᵢ Sᵢ + ω_W) · [p × e_m; e_m]
-            let weight = info.path.iter().fold(u0, |u, &i| u.add_scaled(&data.S[i + 1], h.omega_hat[i]));
+            world_force_gradient(data, &info.path, &p, &f, (omega, u0), &mut w.scratch, g_q, &mut w.tau);
+            // ∂φ/∂λ̃_m = −(Σ_{i on the path} ωᵢ Sᵢ + u₀) · [p × e_m; e_m]
+            let weight = info.path.iter().fold(*u0, |u, &i| u.add_scaled(&data.S[i + 1], omega[i]));
             for (m, e) in info.directions.iter().enumerate() {
                 g_l[info.offset + m] = -weight.dot(&Force::new(p.cross(e), *e));
             }
         }
-        if spec.strength.is_some() {
-            self.add_strength_gradient(out);
-        }
     }
 
-    /// `∇φ` from the node's torque rows (a free body's joint torques, `root.rs`, have no contracted pass):
+    /// `∇φ` from the node's torque rows, for a free body (the derivative matrices of `eval_state` projected,
+    /// `root.rs`: O(nv²) a pass; [`Self::free_node_gradient`] is the contracted one, and this its reference):
     /// `Σ_l ω̂_l ∇τ_l + Σᵢ w_pᵢ ∇pᵢ` (the root's rows, momenta or forces), plus the strength terms (a free figure has
     /// no balance, `ω_W = 0`).
-    fn node_gradient_of_rows(&mut self, out: &mut [f64]) {
+    pub(super) fn node_gradient_of_rows(&mut self, out: &mut [f64]) {
         let (nv, nl) = (self.layout.nv, self.layout.n_lambda);
         self.eval_state(true);
         out.fill(0.0);

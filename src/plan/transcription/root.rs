@@ -42,7 +42,7 @@ use crate::dynamics::{crba::crba, rnea_derivatives::rnea_derivatives};
 use crate::model::Model;
 use crate::solve::Evaluation;
 use crate::spatial::Vec3;
-use nalgebra::{Matrix6, Vector6};
+use nalgebra::{Cholesky, Const, Matrix6, Vector6};
 
 /// Where the root's rows are: its DOFs and the nodes they hold at.
 #[derive(Clone, Debug, Default)]
@@ -98,7 +98,7 @@ pub(super) struct FreeBody {
     /// `pᵢ`; otherwise the root's forces `τᵢ` of the spline's motion (a hand on a rail, gravity).
     pub(super) conserved: bool,
     /// `G = H_jr H_rr⁻¹`, `nv × 6` row-major (the root's rows unused).
-    g: Vec<f64>,
+    pub(super) g: Vec<f64>,
     /// The root rows' values, and their derivatives along `q`, `q̇`, `q̈` (`6 × nv` each) and `λ̃` (`6 × n_λ`).
     pub(super) row: [f64; 6],
     d_q: Vec<f64>,
@@ -108,8 +108,14 @@ pub(super) struct FreeBody {
     /// `y = H_rr⁻¹ τ_r`: the free root's acceleration is the spline's less `y` (`q̈_r* = q̈_r − y`).
     pub(super) accel_shift: [f64; 6],
     /// `ỹ` and zeros (`nv`).
-    y_tilde: Vec<f64>,
-    zeros: Vec<f64>,
+    pub(super) y_tilde: Vec<f64>,
+    pub(super) zeros: Vec<f64>,
+    /// The contracted gradient's (`root_gradient.rs`): `H_rr`'s factor at the `q` of `g`, the weights `ω̃`
+    /// and those of the first pass, and one pass's `∂/∂q, ∂/∂q̇, ∂/∂q̈` (`nv` each).
+    pub(super) root_factor: Option<Cholesky<f64, Const<6>>>,
+    pub(super) omega_tilde: Vec<f64>,
+    pub(super) omega_first: Vec<f64>,
+    pub(super) pass: [Vec<f64>; 3],
 }
 
 impl FreeBody {
@@ -134,6 +140,10 @@ impl FreeBody {
             d_l: vec![0.0; 6 * nl],
             y_tilde: vec![0.0; nv],
             zeros: vec![0.0; nv],
+            root_factor: None,
+            omega_tilde: vec![0.0; nv],
+            omega_first: vec![0.0; nv],
+            pass: [vec![0.0; nv], vec![0.0; nv], vec![0.0; nv]],
         }
     }
 
