@@ -3,8 +3,9 @@
 //! The Gauss–Newton matrix `JᵀJ` of the transcribed problem is banded when the unknowns are ordered
 //! control-point-major: a residual at a quadrature node touches the 4 control points of its knot span, so
 //! `JᵀJ` has half-bandwidth about `4·nv`. A banded Cholesky costs `O(n b²)` instead of `O(n³/3)` — for
-//! n = 3000, b = 120 that is 4·10⁷ against 9·10⁹ flops. When the band is wide (more than half the matrix)
-//! the dense factorisation (nalgebra) is used instead.
+//! n = 3000, b = 120 that is 4·10⁷ against 9·10⁹ flops. The structured solver keeps the banded storage even
+//! when the band covers the whole matrix: its grouped factorisation is faster than nalgebra's dense one there
+//! too. The dense storage (nalgebra's factorisation) serves the secant term's tests and callers that want it.
 
 use nalgebra::DMatrix;
 
@@ -47,15 +48,6 @@ impl SymmetricMatrix {
     /// A zero matrix in dense storage.
     pub fn dense(n: usize) -> Self {
         SymmetricMatrix { n, storage: Storage::Dense(DMatrix::zeros(n, n)) }
-    }
-
-    /// Banded storage when the band covers at most half the matrix, dense otherwise.
-    pub fn for_bandwidth(n: usize, bandwidth: usize) -> Self {
-        if 2 * (bandwidth + 1) <= n {
-            Self::banded(n, bandwidth)
-        } else {
-            Self::dense(n)
-        }
     }
 
     /// Rows (and columns).
@@ -268,9 +260,7 @@ mod tests {
     }
 
     #[test]
-    fn storage_choice_and_band_checks() {
-        assert!(SymmetricMatrix::for_bandwidth(100, 10).is_banded());
-        assert!(!SymmetricMatrix::for_bandwidth(10, 6).is_banded());
+    fn band_checks() {
         let mut a = SymmetricMatrix::banded(5, 1);
         assert!(a.add(2, 1, 1.0));
         assert!(!a.add(0, 2, 1.0));
