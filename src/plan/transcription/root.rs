@@ -42,7 +42,7 @@ use crate::dynamics::{crba::crba, rnea_derivatives::rnea_derivatives};
 use crate::model::Model;
 use crate::solve::Evaluation;
 use crate::spatial::Vec3;
-use nalgebra::{Cholesky, Const, Matrix6, Vector6};
+use nalgebra::{Cholesky, Const, DMatrix, Matrix6, Vector6};
 
 /// Where the root's rows are: its DOFs and the nodes they hold at.
 #[derive(Clone, Debug, Default)]
@@ -147,6 +147,20 @@ impl FreeBody {
         }
     }
 
+    /// `H_rr`'s factor into `root_factor` and `G = H_jr H_rr⁻¹` into `g` from `h = H(q)`; the factor, or
+    /// `None` if `H_rr` is singular.
+    pub(super) fn factor_root(&mut self, h: &DMatrix<f64>) -> Option<&Cholesky<f64, Const<6>>> {
+        let r = &self.dofs;
+        self.root_factor = Matrix6::from_fn(|a, b| h[(r[a], r[b])]).cholesky();
+        let factor = self.root_factor.as_ref()?;
+        for j in (0..h.nrows()).filter(|j| !r.contains(j)) {
+            // G_j = H_jr H_rr⁻¹ (its row: H_rr⁻¹ H_rj, H_rr symmetric)
+            let g_j = factor.solve(&Vector6::from_fn(|a, _| h[(j, r[a])]));
+            self.g[j * 6..j * 6 + 6].copy_from_slice(g_j.as_slice());
+        }
+        Some(factor)
+    }
+
     /// Root row `m`'s derivatives with respect to the node's `q`, `q̇`, `q̈`, `λ̃`.
     pub(super) fn row_derivatives(&self, m: usize, nv: usize, nl: usize) -> Derivatives<'_> {
         Derivatives::row(m, (nv, nl), [&self.d_q, &self.d_v, &self.d_a], &self.d_l)
@@ -215,16 +229,14 @@ impl Transcription<'_> {
     fn project_joint_torques(&mut self) -> Option<Vector6<f64>> {
         let nv = self.layout.nv;
         let (w, f, h) = (&mut self.work, &mut self.free, &self.data.M);
-        let r = &f.dofs;
         f.accel_shift = [0.0; 6];
-        let chol = Matrix6::from_fn(|a, b| h[(r[a], r[b])]).cholesky()?;
-        let y = chol.solve(&Vector6::from_fn(|a, _| w.tau[r[a]]));
+        let tau_r = Vector6::from_fn(|a, _| w.tau[f.dofs[a]]);
+        let y = f.factor_root(h)?.solve(&tau_r);
         f.accel_shift.copy_from_slice(y.as_slice());
+        let r = &f.dofs;
         for j in (0..nv).filter(|j| !r.contains(j)) {
-            // G_j = H_jr H_rr⁻¹ (its row: H_rr⁻¹ H_rj, H_rr symmetric); τ_j* = τ_j − H_jr y
-            let h_jr = Vector6::from_fn(|a, _| h[(j, r[a])]);
-            f.g[j * 6..j * 6 + 6].copy_from_slice(chol.solve(&h_jr).as_slice());
-            w.tau[j] -= h_jr.dot(&y);
+            // τ_j* = τ_j − H_jr y
+            w.tau[j] -= Vector6::from_fn(|a, _| h[(j, r[a])]).dot(&y);
         }
         r.iter().for_each(|&ra| w.tau[ra] = 0.0);
         Some(y)

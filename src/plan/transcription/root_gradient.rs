@@ -18,7 +18,7 @@
 use super::Transcription;
 use crate::dynamics::{crba::crba, rnea_gradient::rnea_gradient_placed};
 use crate::spatial::{Motion, Vec3};
-use nalgebra::{Matrix6, Vector6};
+use nalgebra::Vector6;
 
 impl Transcription<'_> {
     /// `∇φ` of a free body at the state in `self.work` into `out` (as [`Self::node_gradient`]; `τ*` into
@@ -66,18 +66,8 @@ impl Transcription<'_> {
 
     /// `H(q)` by the CRBA, `H_rr`'s factor and `G = H_jr H_rr⁻¹` at `work.q`; `false` if `H_rr` is singular.
     fn free_inertia(&mut self) -> bool {
-        let nv = self.layout.nv;
-        let (f, data) = (&mut self.free, &mut self.data);
-        let h = crba(&self.spec.model, data, &self.work.q);
-        let r = &f.dofs;
-        f.root_factor = Matrix6::from_fn(|a, b| h[(r[a], r[b])]).cholesky();
-        let Some(factor) = &f.root_factor else { return false };
-        for j in (0..nv).filter(|j| !r.contains(j)) {
-            // G_j = H_rr⁻¹ H_rj (H_rr symmetric)
-            let g_j = factor.solve(&Vector6::from_fn(|a, _| h[(j, r[a])]));
-            f.g[j * 6..j * 6 + 6].copy_from_slice(g_j.as_slice());
-        }
-        true
+        let h = crba(&self.spec.model, &mut self.data, &self.work.q);
+        self.free.factor_root(h).is_some()
     }
 
     /// `ω̃ = [−Gᵀω̂_j; ω̂_j]` into `free.omega_tilde`, and the first pass's weights into `free.omega_first`:
