@@ -192,7 +192,7 @@ pub(super) fn motion_html(model: &Model, record: &PlanRecord, summary: Option<&s
 pub(super) fn filmstrip(model: &Model, record: &PlanRecord, view: View, names: [String; 2]) -> Result<Vec<(String, Vec<u8>)>> {
     let frames = viewer::FILMSTRIP_FRAMES;
     let svg = filmstrip::filmstrip_svg(model, record, frames, view);
-    let png = filmstrip::filmstrip_png(model, record, frames, view)?;
+    let png = filmstrip::png_of(&svg)?;
     let [svg_name, png_name] = names;
     Ok(vec![(svg_name, svg.into_bytes()), (png_name, png)])
 }

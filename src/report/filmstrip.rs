@@ -331,5 +331,10 @@ fn weight(model: &Model, record: &PlanRecord) -> f64 {
 /// The filmstrip as PNG (rendered at twice the SVG's pixel size, so it stays sharp on high-density screens
 /// and in print). Text uses the system's fonts; without any the labels are left out.
 pub fn filmstrip_png(model: &Model, record: &PlanRecord, frames: usize, view: View) -> Result<Vec<u8>> {
-    super::render::svg_to_png(&filmstrip_svg(model, record, frames, view), 2.0, "filmstrip")
+    png_of(&filmstrip_svg(model, record, frames, view))
+}
+
+/// The PNG of a filmstrip's SVG ([`filmstrip_svg`]), for a caller that writes both.
+pub fn png_of(svg: &str) -> Result<Vec<u8>> {
+    super::render::svg_to_png(svg, 2.0, "filmstrip")
 }

@@ -125,9 +125,10 @@ pub fn plots_labelled(
     guess: Option<&[SampleRecord]>,
     labels: Labels,
 ) -> Result<Vec<(String, Vec<u8>)>> {
+    let svgs = svgs(model, record, guess, labels)?;
+    let pngs = super::render::svgs_to_pngs(&svgs.iter().map(|(_, svg)| svg.as_str()).collect::<Vec<_>>(), PNG_SCALE, "plots")?;
     let mut files = Vec::new();
-    for (name, svg) in svgs(model, record, guess, labels)? {
-        let png = super::render::svg_to_png(&svg, PNG_SCALE, "plots")?;
+    for ((name, svg), png) in svgs.into_iter().zip(pngs) {
         let stem = name.trim_end_matches(".svg").to_string();
         files.push((name, svg.into_bytes()));
         files.push((format!("{stem}.png"), png));

@@ -1,31 +1,110 @@
-//! The one SVG → PNG renderer of the reports (plots and filmstrips): `resvg` with the system's fonts,
-//! scanned once per process, and the generic `sans-serif` pointed at an installed sans face (fontdb's own
-//! default, Arial, is rarely installed on Linux). Without any installed font the PNG has no lettering.
+//! The one SVG → PNG renderer of the reports (plots and filmstrips): `resvg` with a sans face found among the
+//! system's fonts once per process, the generic `sans-serif` pointed at it (fontdb's own default, Arial, is
+//! rarely installed on Linux). Without any installed font the PNG has no lettering.
 
 use crate::error::{Error, Result};
 use resvg::{tiny_skia, usvg};
+use std::collections::HashMap;
+use std::path::PathBuf;
 use std::sync::{Arc, OnceLock};
 
-/// The system's fonts, loaded once (scanning them takes longer than rendering).
+/// The preferred sans faces and their files (regular first). Where the regular one is installed, only these
+/// files are loaded: parsing every installed font, as fontdb's system scan does, takes longer than rendering
+/// on a desktop with thousands of them.
+const PREFERRED: [(&str, [&str; 4]); 3] = [
+    ("DejaVu Sans", ["DejaVuSans.ttf", "DejaVuSans-Bold.ttf", "DejaVuSans-Oblique.ttf", "DejaVuSans-BoldOblique.ttf"]),
+    (
+        "Liberation Sans",
+        ["LiberationSans-Regular.ttf", "LiberationSans-Bold.ttf", "LiberationSans-Italic.ttf", "LiberationSans-BoldItalic.ttf"],
+    ),
+    ("Noto Sans", ["NotoSans-Regular.ttf", "NotoSans-Bold.ttf", "NotoSans-Italic.ttf", "NotoSans-BoldItalic.ttf"]),
+];
+
+/// The system's fonts, loaded once per process: the first preferred family whose regular file is installed,
+/// else every installed font with the generic `sans-serif` pointed at a preferred (or the first) family.
 fn fonts() -> Arc<usvg::fontdb::Database> {
     static FONTS: OnceLock<Arc<usvg::fontdb::Database>> = OnceLock::new();
-    FONTS
-        .get_or_init(|| {
-            let mut db = usvg::fontdb::Database::new();
-            db.load_system_fonts();
-            let families: Vec<String> = db.faces().flat_map(|f| f.families.iter().map(|(name, _)| name.clone())).collect();
-            let preferred = ["DejaVu Sans", "Liberation Sans", "Noto Sans", "Arial", "Helvetica"];
-            let sans = preferred
-                .iter()
-                .find(|p| families.iter().any(|f| f == *p))
-                .map(|p| p.to_string())
-                .or_else(|| families.first().cloned());
-            if let Some(family) = sans {
-                db.set_sans_serif_family(family);
+    FONTS.get_or_init(|| Arc::new(preferred_fonts(&font_dirs()).unwrap_or_else(system_fonts))).clone()
+}
+
+/// The directories fonts are installed in (fontdb's list for this platform).
+fn font_dirs() -> Vec<PathBuf> {
+    let home = std::env::var_os("HOME").map(PathBuf::from);
+    let mut dirs: Vec<PathBuf> = if cfg!(target_os = "macos") {
+        ["/Library/Fonts", "/System/Library/Fonts"].map(PathBuf::from).to_vec()
+    } else if cfg!(windows) {
+        vec![std::env::var_os("SYSTEMROOT").map_or_else(|| PathBuf::from(r"C:\Windows"), PathBuf::from).join("Fonts")]
+    } else {
+        ["/usr/share/fonts", "/usr/local/share/fonts"].map(PathBuf::from).to_vec()
+    };
+    if let Some(h) = home {
+        dirs.extend([h.join(".fonts"), h.join(".local/share/fonts"), h.join("Library/Fonts")]);
+    }
+    dirs
+}
+
+/// The first family of [`PREFERRED`] whose regular file lies under `dirs`, loaded with whichever of its other
+/// files are there; `None` if no regular file is found or it does not load.
+fn preferred_fonts(dirs: &[PathBuf]) -> Option<usvg::fontdb::Database> {
+    let found = find_files(dirs, PREFERRED.iter().flat_map(|(_, files)| files.iter().copied()));
+    let (family, files) = PREFERRED.iter().find(|(_, files)| found.contains_key(files[0]))?;
+    let mut db = usvg::fontdb::Database::new();
+    for path in files.iter().filter_map(|f| found.get(*f)) {
+        // A file that is not a font is skipped; the regular one must load.
+        let _ = db.load_font_file(path);
+    }
+    if db.is_empty() {
+        return None;
+    }
+    db.set_sans_serif_family(*family);
+    Some(db)
+}
+
+/// Every installed font, `sans-serif` pointed at a preferred family if one is there (fontdb's own default,
+/// Arial, is rarely installed on Linux). Without any font the PNGs have no lettering.
+fn system_fonts() -> usvg::fontdb::Database {
+    let mut db = usvg::fontdb::Database::new();
+    db.load_system_fonts();
+    let families: Vec<String> = db.faces().flat_map(|f| f.families.iter().map(|(name, _)| name.clone())).collect();
+    let sans = PREFERRED
+        .iter()
+        .map(|(family, _)| *family)
+        .chain(["Arial", "Helvetica"])
+        .find(|p| families.iter().any(|f| f == p))
+        .map(str::to_string)
+        .or_else(|| families.first().cloned());
+    if let Some(family) = sans {
+        db.set_sans_serif_family(family);
+    }
+    db
+}
+
+/// The paths of the files named `names` anywhere under `dirs` (the first found of each name), by a walk
+/// that reads directories only, never a file.
+fn find_files<'n>(dirs: &[PathBuf], names: impl IntoIterator<Item = &'n str>) -> HashMap<&'n str, PathBuf> {
+    let wanted: Vec<&str> = names.into_iter().collect();
+    let mut found = HashMap::new();
+    let mut stack: Vec<(PathBuf, usize)> = dirs.iter().map(|d| (d.clone(), 0)).collect();
+    while let Some((dir, depth)) = stack.pop() {
+        let Ok(entries) = std::fs::read_dir(&dir) else { continue };
+        for entry in entries.flatten() {
+            let path = entry.path();
+            let is_dir = entry.file_type().is_ok_and(|t| t.is_dir());
+            if is_dir && depth < 8 {
+                stack.push((path, depth + 1));
+            } else if let Some(name) = wanted.iter().find(|n| entry.file_name() == **n) {
+                found.entry(*name).or_insert(path);
             }
-            Arc::new(db)
-        })
-        .clone()
+        }
+    }
+    found
+}
+
+/// [`svg_to_png`] of every picture, on all cores, in their order: the plots' PNGs are most of the time a
+/// plan directory takes to write.
+pub fn svgs_to_pngs(svgs: &[&str], zoom: f32, what: &str) -> Result<Vec<Vec<u8>>> {
+    use rayon::prelude::*;
+    svgs.par_iter().map(|svg| svg_to_png(svg, zoom, what)).collect()
 }
 
 /// Renders SVG text to PNG bytes at `zoom` pixels per SVG pixel, on its own background. `what` (e.g.
@@ -39,4 +118,39 @@ pub fn svg_to_png(svg: &str, zoom: f32, what: &str) -> Result<Vec<u8>> {
         .ok_or_else(|| fail("png", format!("cannot allocate a {}×{} picture", size.width(), size.height())))?;
     resvg::render(&tree, tiny_skia::Transform::from_scale(zoom, zoom), &mut pixmap.as_mut());
     pixmap.encode_png().map_err(|e| fail("png", e.to_string()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The walk finds the preferred files at any depth, the first of each name, and nothing else.
+    #[test]
+    fn font_files_are_found_by_name_under_nested_directories() {
+        let root = std::env::temp_dir().join(format!("mintorque-fonts-{}", std::process::id()));
+        let deep = root.join("truetype/dejavu");
+        std::fs::create_dir_all(&deep).unwrap();
+        std::fs::write(deep.join("DejaVuSans.ttf"), b"").unwrap();
+        std::fs::write(deep.join("DejaVuSerif.ttf"), b"").unwrap();
+        std::fs::write(root.join("LiberationSans-Bold.ttf"), b"").unwrap();
+        let found = find_files(
+            &[root.clone(), root.join("missing")],
+            ["DejaVuSans.ttf", "LiberationSans-Bold.ttf", "NotoSans-Regular.ttf"],
+        );
+        std::fs::remove_dir_all(&root).unwrap();
+        assert_eq!(found.get("DejaVuSans.ttf"), Some(&deep.join("DejaVuSans.ttf")));
+        assert_eq!(found.get("LiberationSans-Bold.ttf"), Some(&root.join("LiberationSans-Bold.ttf")));
+        assert_eq!(found.len(), 2);
+    }
+
+    /// An empty "regular" file is no font: the preferred loader gives up and the system scan takes over.
+    #[test]
+    fn a_preferred_file_that_is_no_font_falls_back() {
+        let root = std::env::temp_dir().join(format!("mintorque-nofont-{}", std::process::id()));
+        std::fs::create_dir_all(&root).unwrap();
+        std::fs::write(root.join("DejaVuSans.ttf"), b"not a font").unwrap();
+        let db = preferred_fonts(std::slice::from_ref(&root));
+        std::fs::remove_dir_all(&root).unwrap();
+        assert!(db.is_none());
+    }
 }

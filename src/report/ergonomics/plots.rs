@@ -78,9 +78,10 @@ pub fn plots(model: &Model, record: &PlanRecord, series: Option<&LoadSeries>, e:
             lines_svg(&format!("Torque as a share of strength — {}", record.model_name), record, &panels)?,
         ));
     }
+    let pngs =
+        crate::report::render::svgs_to_pngs(&svgs.iter().map(|(_, svg)| svg.as_str()).collect::<Vec<_>>(), PNG_SCALE, "plots")?;
     let mut files = Vec::new();
-    for (stem, svg) in svgs {
-        let png = crate::report::render::svg_to_png(&svg, PNG_SCALE, "plots")?;
+    for ((stem, svg), png) in svgs.into_iter().zip(pngs) {
         files.push((format!("{stem}.svg"), svg.into_bytes()));
         files.push((format!("{stem}.png"), png));
     }
