@@ -232,19 +232,23 @@ impl Transcription<'_> {
     pub(super) fn chain_rule_on(layout: &Layout, basis: &BasisAt, s: f64, d: Derivatives, dofs: &[usize], out: &mut [f64]) {
         let Derivatives { q: d_q, v: d_v, a: d_a, lambda: d_l } = d;
         let (motion_at, lambda_at) = supported_offsets(layout, basis.first, dofs.len());
+        let scaled: [(f64, f64, f64); 4] = std::array::from_fn(|a| (basis.b[a] * s, basis.db[a] * s, basis.ddb[a] * s));
         out.fill(0.0);
-        for a in 0..4 {
-            let (b, db, ddb) = (basis.b[a] * s, basis.db[a] * s, basis.ddb[a] * s);
-            if let Some(at) = motion_at[a] {
-                // ∂row/∂c_{j,i} += ∂row/∂qᵢ Bⱼ + ∂row/∂q̇ᵢ Ḃⱼ + ∂row/∂q̈ᵢ B̈ⱼ (eq. 33; a shared point adds to its owner's)
-                for (k, &i) in dofs.iter().enumerate() {
-                    out[at + k] += d_q[i] * b + d_v[i] * db + d_a[i] * ddb;
+        // ∂row/∂c_{j,i} += ∂row/∂qᵢ Bⱼ + ∂row/∂q̇ᵢ Ḃⱼ + ∂row/∂q̈ᵢ B̈ⱼ (eq. 33; a shared point adds to its owner's,
+        // in the order of the four points): each DOF's three derivatives read once for the four points.
+        for (k, &i) in dofs.iter().enumerate() {
+            let (dq, dv, da) = (d_q[i], d_v[i], d_a[i]);
+            for (at, &(b, db, ddb)) in motion_at.iter().zip(&scaled) {
+                if let Some(at) = at {
+                    out[at + k] += dq * b + dv * db + da * ddb;
                 }
             }
-            if let Some(d_l) = d_l {
-                // ∂row/∂λ̃_{j,m} = ∂row/∂λ̃_m Bⱼ · scale
+        }
+        if let Some(d_l) = d_l {
+            // ∂row/∂λ̃_{j,m} = ∂row/∂λ̃_m Bⱼ · scale
+            for (at, &(b, _, _)) in lambda_at.iter().zip(&scaled) {
                 for (m, d) in d_l.iter().enumerate() {
-                    out[lambda_at[a] + m] = d * b * layout.lambda_scale;
+                    out[at + m] = d * b * layout.lambda_scale;
                 }
             }
         }
