@@ -125,15 +125,9 @@ pub fn plots_labelled(
     guess: Option<&[SampleRecord]>,
     labels: Labels,
 ) -> Result<Vec<(String, Vec<u8>)>> {
-    let svgs = svgs(model, record, guess, labels)?;
-    let pngs = super::render::svgs_to_pngs(&svgs.iter().map(|(_, svg)| svg.as_str()).collect::<Vec<_>>(), PNG_SCALE, "plots")?;
-    let mut files = Vec::new();
-    for ((name, svg), png) in svgs.into_iter().zip(pngs) {
-        let stem = name.trim_end_matches(".svg").to_string();
-        files.push((name, svg.into_bytes()));
-        files.push((format!("{stem}.png"), png));
-    }
-    Ok(files)
+    let pictures =
+        svgs(model, record, guess, labels)?.into_iter().map(|(name, svg)| (name.trim_end_matches(".svg").to_string(), svg));
+    super::render::svg_and_png_files(pictures.collect(), PNG_SCALE, "plots")
 }
 
 /// The SVG plots alone, as `(file name, SVG text)`.

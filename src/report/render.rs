@@ -100,11 +100,20 @@ fn find_files<'n>(dirs: &[PathBuf], names: impl IntoIterator<Item = &'n str>) ->
     found
 }
 
-/// [`svg_to_png`] of every picture, on all cores, in their order: the plots' PNGs are most of the time a
-/// plan directory takes to write.
-pub fn svgs_to_pngs(svgs: &[&str], zoom: f32, what: &str) -> Result<Vec<Vec<u8>>> {
+/// Each picture `(stem, SVG)` as the files `stem.svg` and `stem.png`, in their order, the PNGs ([`svg_to_png`])
+/// rendered on all cores: they are most of the time a plan directory takes to write.
+pub fn svg_and_png_files<S: AsRef<str> + Sync>(
+    pictures: Vec<(S, String)>,
+    zoom: f32,
+    what: &str,
+) -> Result<Vec<(String, Vec<u8>)>> {
     use rayon::prelude::*;
-    svgs.par_iter().map(|svg| svg_to_png(svg, zoom, what)).collect()
+    let pngs: Vec<Vec<u8>> = pictures.par_iter().map(|(_, svg)| svg_to_png(svg, zoom, what)).collect::<Result<_>>()?;
+    let files = pictures.into_iter().zip(pngs).flat_map(|((stem, svg), png)| {
+        let stem = stem.as_ref();
+        [(format!("{stem}.svg"), svg.into_bytes()), (format!("{stem}.png"), png)]
+    });
+    Ok(files.collect())
 }
 
 /// Renders SVG text to PNG bytes at `zoom` pixels per SVG pixel, on its own background. `what` (e.g.

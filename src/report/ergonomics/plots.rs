@@ -78,14 +78,7 @@ pub fn plots(model: &Model, record: &PlanRecord, series: Option<&LoadSeries>, e:
             lines_svg(&format!("Torque as a share of strength — {}", record.model_name), record, &panels)?,
         ));
     }
-    let pngs =
-        crate::report::render::svgs_to_pngs(&svgs.iter().map(|(_, svg)| svg.as_str()).collect::<Vec<_>>(), PNG_SCALE, "plots")?;
-    let mut files = Vec::new();
-    for ((stem, svg), png) in svgs.into_iter().zip(pngs) {
-        files.push((format!("{stem}.svg"), svg.into_bytes()));
-        files.push((format!("{stem}.png"), png));
-    }
-    Ok(files)
+    crate::report::render::svg_and_png_files(svgs, PNG_SCALE, "plots")
 }
 
 /// The components (0, 1, 2 for x, y, z) worth drawing: those not zero at every joint and sample (a planar

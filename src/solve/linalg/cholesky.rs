@@ -158,8 +158,7 @@ fn grouped(n: usize, b: usize, l: &mut [f64], panel: &mut [[f64; ROWS]]) -> Resu
 /// `s_r = i + r − b`, and every sum of its columns runs over `j = s_r … k − 1`.
 #[inline(always)]
 fn factor_rows<const R: usize>(b: usize, l: &mut [f64], i: usize, panel: &mut [[f64; R]]) -> Result<(), NotPositiveDefinite> {
-    // Entry (row, j) of the band sits at origin(row) + j.
-    let origin = |row: usize| row * (b + 1) + b - row;
+    let origin = |row: usize| origin(b, row);
     let start: [usize; R] = std::array::from_fn(|r| (i + r).saturating_sub(b));
     let common = start[R - 1];
     // The columns k < s_{R−1} some rows reach, row by row: L[i+r][k] = (A − Σ_{j=s_r}^{k−1} L[i+r][j] L[k][j]) / L[k][k].
@@ -212,7 +211,7 @@ fn columns<const R: usize, const C: usize>(
     start: &[usize; R],
     panel: &mut [[f64; R]],
 ) {
-    let origin = |row: usize| row * (b + 1) + b - row;
+    let origin = |row: usize| origin(b, row);
     let common = start[R - 1];
     let mut sum: [[f64; R]; C] =
         std::array::from_fn(|c| std::array::from_fn(|r| dot(l, origin(i + r), origin(k0 + c), start[r], common)));
@@ -244,6 +243,12 @@ fn columns<const R: usize, const C: usize>(
             panel[k - common][r] = value;
         }
     }
+}
+
+/// Entry `(row, j)` of a band of half-width `b` sits at `origin(b, row) + j`.
+#[inline(always)]
+fn origin(b: usize, row: usize) -> usize {
+    row * (b + 1) + b - row
 }
 
 /// `L[row][k] = (A[row][k] − Σ_{j=from}^{k−1} L[row][j] L[k][j]) / L[k][k]`.
