@@ -109,8 +109,11 @@ pub fn plan(
         .map(|s| match s {
             "structured" => Ok(SolverKind::Structured),
             "newton" => Ok(SolverKind::Newton),
+            "interior-point" => Ok(SolverKind::InteriorPoint),
             "auglag-bfgs" => Ok(SolverKind::AuglagBfgs),
-            other => Err(error(format!("solver: \"{other}\" is not a solver: structured, newton or auglag-bfgs"))),
+            other => Err(error(format!(
+                "solver: \"{other}\" is not a solver: structured, newton or auglag-bfgs (or the experimental interior-point)"
+            ))),
         })
         .transpose()?;
     let overrides = Overrides { solver, control_points, starts, refine: false };

@@ -250,6 +250,7 @@ fn run(cli: Cli) -> Result<ExitCode> {
             let solver = solver.map(|s| match s {
                 SolverArg::Structured => SolverKind::Structured,
                 SolverArg::Newton => SolverKind::Newton,
+                SolverArg::InteriorPoint => SolverKind::InteriorPoint,
                 SolverArg::AuglagBfgs => SolverKind::AuglagBfgs,
             });
             let overrides = Overrides { solver, control_points, starts, refine };

@@ -43,6 +43,9 @@ pub enum SolverKind {
     /// The same trust region on the model Gauss–Newton + the exact second-order term of the Lagrangian
     /// (node-wise, banded): 2–7× fewer iterations, dearer ones (docs/performance.md).
     Newton,
+    /// A primal-dual interior-point method (barrier on slacks, augmented Lagrangian on the equalities) with
+    /// the exact second-order term, one Newton step per multiplier update (`solve::interior_point`).
+    InteriorPoint,
     /// The paper's method: augmented Lagrangian (eq. 10–11) around BFGS with a Wolfe line search.
     AuglagBfgs,
 }
@@ -55,6 +58,7 @@ impl SolverKind {
                 "structured (augmented Lagrangian + Levenberg–Marquardt, banded; second-order when it crawls)"
             }
             SolverKind::Newton => "newton (augmented Lagrangian + second-order trust region, banded)",
+            SolverKind::InteriorPoint => "interior-point (primal-dual barrier + augmented Lagrangian, exact Hessian, banded)",
             SolverKind::AuglagBfgs => "auglag-bfgs (augmented Lagrangian + BFGS, the paper's method)",
         }
     }

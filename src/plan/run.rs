@@ -128,6 +128,7 @@ pub(super) fn run_start(
     let polishers: &[SolverKind] = match solver {
         SolverKind::Structured => &[SolverKind::Newton, SolverKind::AuglagBfgs],
         SolverKind::Newton => &[SolverKind::AuglagBfgs],
+        SolverKind::InteriorPoint => &[],
         SolverKind::AuglagBfgs => &[],
     };
     let mut polished = false;
@@ -203,6 +204,7 @@ fn solve_once(
     match solver {
         SolverKind::Structured => solve::AugLagLevenbergMarquardt.solve(problem, x0, settings, observer),
         SolverKind::Newton => solve::AugLagNewton.solve(problem, x0, settings, observer),
+        SolverKind::InteriorPoint => solve::InteriorPoint.solve(problem, x0, settings, observer),
         SolverKind::AuglagBfgs => solve::AugLagBfgs::default().solve(problem, x0, settings, observer),
     }
 }

@@ -28,7 +28,7 @@ use super::solver::{Progress, Settings};
 use super::sparse::PatternError;
 
 pub use bfgs_inner::AugLagBfgs;
-pub(crate) use outer::solve_with;
+pub(crate) use outer::{invalid, solve_with, validate};
 
 /// Multipliers are kept within ±this (ALGENCAN's safeguard), so an infeasible problem cannot overflow them.
 const MULTIPLIER_BOUND: f64 = 1e20;
@@ -97,15 +97,55 @@ struct StallWatch {
 
 /// The state of the convergence test at a point, for given multipliers.
 #[derive(Clone, Copy, Debug, PartialEq)]
-struct Assessment {
-    objective: f64,
+pub(crate) struct Assessment {
+    pub(crate) objective: f64,
     /// `‖∇ₓℓ‖∞ / (1 + |F|)`.
-    stationarity: f64,
+    pub(crate) stationarity: f64,
     /// `max λᵢ (−gᵢ)⁺ / (1 + |F|)`.
-    complementarity: f64,
-    violation: f64,
-    worst: Option<(ConstraintKind, usize)>,
-    converged: bool,
+    pub(crate) complementarity: f64,
+    pub(crate) violation: f64,
+    pub(crate) worst: Option<(ConstraintKind, usize)>,
+    pub(crate) converged: bool,
+}
+
+/// The convergence test of [`super::solver`] at `eval`, with the multipliers in the problem's units
+/// `lambda`, `mu` (of `g`, `h`); `gradient` is work of length `n`.
+pub(crate) fn assess_at(
+    eval: &Evaluation,
+    scales: &Scales,
+    [lambda, mu]: [&[f64]; 2],
+    gradient: &mut [f64],
+    settings: &Settings,
+) -> Assessment {
+    eval.jr.tr_mul_vec(&eval.r, gradient);
+    eval.jg.tr_mul_vec_add(1.0, lambda, gradient);
+    eval.jh.tr_mul_vec_add(1.0, mu, gradient);
+    let objective = eval.objective();
+    let scale = 1.0 + objective.abs();
+    let stationarity = norm_inf(gradient) / scale;
+    let complementarity = lambda.iter().zip(&eval.g).map(|(l, g)| l * (-g).max(0.0)).fold(0.0, f64::max) / scale;
+    let (violation, worst) = violation_at(eval, scales);
+    Assessment {
+        objective,
+        stationarity,
+        complementarity,
+        violation,
+        worst,
+        converged: stationarity <= settings.tol_stationarity
+            && complementarity <= settings.tol_stationarity
+            && violation <= settings.tol_violation,
+    }
+}
+
+/// Largest scaled violation of `h = 0`, `g ≤ 0` at `eval`, and the constraint with the largest signed scaled
+/// value (the worst violated one, or the tightest if all hold).
+pub(crate) fn violation_at(eval: &Evaluation, scales: &Scales) -> (f64, Option<(ConstraintKind, usize)>) {
+    let eq = eval.h.iter().zip(&scales.eq).enumerate().map(|(k, (h, s))| ((h / s).abs(), (ConstraintKind::Equality, k)));
+    let ineq = eval.g.iter().zip(&scales.ineq).enumerate().map(|(i, (g, s))| (g / s, (ConstraintKind::Inequality, i)));
+    let (largest, worst) =
+        eq.chain(ineq).fold((f64::NEG_INFINITY, None), |(m, w), (v, c)| if v > m { (v, Some(c)) } else { (m, w) });
+    // Violations are non-negative; with no constraints at all the violation is 0.
+    (largest.max(0.0), worst)
 }
 
 /// `L_A` of eq. 10 over a [`Problem`], with the multipliers, penalty, counters and limits of a solve.
@@ -253,15 +293,9 @@ impl<'a> AugmentedLagrangian<'a> {
         self.eval.jh.add_gram_to(Some(&self.coef_h), target)
     }
 
-    /// Largest scaled violation and the constraint with the largest signed scaled value (the worst violated
-    /// one, or the tightest if all hold).
+    /// Largest scaled violation and the constraint with the largest signed scaled value ([`violation_at`]).
     fn violation(&self) -> (f64, Option<(ConstraintKind, usize)>) {
-        let eq = (0..self.dims.n_eq).map(|k| (self.h_scaled(k).abs(), (ConstraintKind::Equality, k)));
-        let ineq = (0..self.dims.n_ineq).map(|i| (self.eval.g[i] / self.scales.ineq[i], (ConstraintKind::Inequality, i)));
-        let (largest, worst) =
-            eq.chain(ineq).fold((f64::NEG_INFINITY, None), |(m, w), (v, c)| if v > m { (v, Some(c)) } else { (m, w) });
-        // Violations are non-negative; with no constraints at all the violation is 0.
-        (largest.max(0.0), worst)
+        violation_at(&self.eval, &self.scales)
     }
 
     /// The measure whose decrease decides the penalty: `max(‖ĥ‖∞, maxᵢ |min(−ĝᵢ, λᵢ/2w_p)|)` = `max |ψ|, |ĥ|`.
@@ -304,27 +338,7 @@ impl<'a> AugmentedLagrangian<'a> {
         for ((c, m), s) in self.coef_h.iter_mut().zip(mu).zip(&self.scales.eq) {
             *c = m / s;
         }
-        let complementarity = (0..self.dims.n_ineq).map(|i| self.coef_g[i] * (-self.eval.g[i]).max(0.0)).fold(0.0, f64::max);
-        let grad = &mut self.gradient_work;
-        self.eval.jr.tr_mul_vec(&self.eval.r, grad);
-        self.eval.jg.tr_mul_vec_add(1.0, &self.coef_g, grad);
-        self.eval.jh.tr_mul_vec_add(1.0, &self.coef_h, grad);
-        let gradient_norm = norm_inf(grad);
-        let objective = self.objective();
-        let scale = 1.0 + objective.abs();
-        let stationarity = gradient_norm / scale;
-        let (violation, worst) = self.violation();
-        let complementarity = complementarity / scale;
-        Assessment {
-            objective,
-            stationarity,
-            complementarity,
-            violation,
-            worst,
-            converged: stationarity <= settings.tol_stationarity
-                && complementarity <= settings.tol_stationarity
-                && violation <= settings.tol_violation,
-        }
+        assess_at(&self.eval, &self.scales, [&self.coef_g, &self.coef_h], &mut self.gradient_work, settings)
     }
 
     /// The iteration hook shared by the inner solvers: counts accepted steps, reports progress, enforces the

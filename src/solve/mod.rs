@@ -14,6 +14,7 @@
 
 pub mod auglag;
 pub mod bfgs;
+pub mod interior_point;
 pub mod least_squares;
 pub mod linalg;
 pub mod line_search;
@@ -25,9 +26,12 @@ pub mod trace;
 
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_interior_point;
 
 pub use auglag::AugLagBfgs;
 pub use bfgs::{Bfgs, BfgsReport, BfgsSettings, BfgsStatus};
+pub use interior_point::InteriorPoint;
 pub use least_squares::{AugLagLevenbergMarquardt, AugLagNewton};
 pub use linalg::{Cholesky, NotPositiveDefinite, SymmetricMatrix};
 pub use line_search::{EvalError, Iterate, LineSearch, Objective};

@@ -11,11 +11,11 @@ type Jacobians = (DMatrix<f64>, DMatrix<f64>, DMatrix<f64>);
 type Model = fn(&[f64]) -> (Values, Jacobians);
 
 /// A small problem with dense Jacobians, given by a function.
-struct Small {
+pub(super) struct Small {
     dims: Dims,
     model: Model,
     names: Vec<&'static str>,
-    scales: Scales,
+    pub(super) scales: Scales,
 }
 
 impl Small {
@@ -79,7 +79,7 @@ fn mat(rows: usize, cols: usize, v: &[f64]) -> DMatrix<f64> {
 /// min ½‖x − (1, 2, 3)‖²  s.t.  x₀ = x₁,  x₀ + x₁ + x₂ ≤ 3,  x₂ ≥ 2.5,  x₀ ≤ 10.
 /// KKT: x − a + λ₀(1,1,1) − λ₁ e₂ + λ₂ e₀ + μ(1,−1,0) = 0 gives μ = −½, and with both first inequalities
 /// active x = (¼, ¼, 5/2), λ = (5/4, 3/4, 0) — positive, so this is the optimum.
-fn qp() -> Small {
+pub(super) fn qp() -> Small {
     fn model(x: &[f64]) -> (Values, Jacobians) {
         let r = vec![x[0] - 1.0, x[1] - 2.0, x[2] - 3.0];
         let h = vec![x[0] - x[1]];
@@ -90,12 +90,12 @@ fn qp() -> Small {
     Small::new(dims(3, 3, 1, 3), model, vec!["x0 = x1", "sum ≤ 3", "x2 ≥ 2.5", "x0 ≤ 10"])
 }
 
-const QP_X: [f64; 3] = [0.25, 0.25, 2.5];
-const QP_LAMBDA: [f64; 3] = [1.25, 0.75, 0.0];
-const QP_MU: [f64; 1] = [-0.5];
+pub(super) const QP_X: [f64; 3] = [0.25, 0.25, 2.5];
+pub(super) const QP_LAMBDA: [f64; 3] = [1.25, 0.75, 0.0];
+pub(super) const QP_MU: [f64; 1] = [-0.5];
 
 /// Hock–Schittkowski 6: min (1 − x₀)²  s.t.  10(x₁ − x₀²) = 0;  x* = (1, 1), F* = 0.
-fn hs6() -> Small {
+pub(super) fn hs6() -> Small {
     fn model(x: &[f64]) -> (Values, Jacobians) {
         let s = std::f64::consts::SQRT_2;
         let r = vec![s * (1.0 - x[0])];
@@ -110,7 +110,7 @@ const HS71_SHIFT: f64 = 100.0;
 
 /// Hock–Schittkowski 71: min x₀x₃(x₀+x₁+x₂) + x₂  s.t.  x₀x₁x₂x₃ ≥ 25,  Σxᵢ² = 40,  1 ≤ xᵢ ≤ 5.
 /// Not a sum of squares, so written as `r = √(2(f + c))` (r is NaN where f < −c: the solvers must cope).
-fn hs71() -> Small {
+pub(super) fn hs71() -> Small {
     fn model(x: &[f64]) -> (Values, Jacobians) {
         let s = x[0] + x[1] + x[2];
         let f = x[0] * x[3] * s + x[2];
@@ -141,7 +141,7 @@ fn hs71() -> Small {
     Small::new(dims(4, 1, 1, 9), model, vec!["Σx² = 40", "x0x1x2x3 ≥ 25"])
 }
 
-const HS71_X: [f64; 4] = [1.0, 4.742999637, 3.821149984, 1.379408291];
+pub(super) const HS71_X: [f64; 4] = [1.0, 4.742999637, 3.821149984, 1.379408291];
 const HS71_F: f64 = 17.014017289;
 
 /// Rosenbrock as least squares: r = (10(x₁ − x₀²), 1 − x₀); minimiser (1, 1).
@@ -155,7 +155,7 @@ fn rosenbrock() -> Small {
 }
 
 /// x ≤ −1 and x ≥ 1: no feasible point.
-fn infeasible() -> Small {
+pub(super) fn infeasible() -> Small {
     fn model(x: &[f64]) -> (Values, Jacobians) {
         let g = vec![x[0] + 1.0, 1.0 - x[0]];
         ((vec![x[0] - 0.5], vec![], g), (mat(1, 1, &[1.0]), DMatrix::zeros(0, 1), mat(2, 1, &[1.0, -1.0])))
@@ -227,7 +227,7 @@ impl Problem for Smoothing {
     }
 }
 
-fn tight() -> Settings {
+pub(super) fn tight() -> Settings {
     Settings { tol_stationarity: 1e-10, tol_violation: 1e-10, ..Settings::default() }
 }
 
@@ -238,12 +238,12 @@ fn both(problem: &mut dyn Problem, x0: &[f64], settings: &Settings) -> (Outcome,
     (a, b)
 }
 
-fn max_diff(a: &[f64], b: &[f64]) -> f64 {
+pub(super) fn max_diff(a: &[f64], b: &[f64]) -> f64 {
     assert_eq!(a.len(), b.len());
     a.iter().zip(b).map(|(p, q)| (p - q).abs()).fold(0.0, f64::max)
 }
 
-fn summary(o: &Outcome) -> String {
+pub(super) fn summary(o: &Outcome) -> String {
     format!(
         "{}: F = {}, stationarity {:.2e}, violation {:.2e} ({:?}), {} iterations, {} outer, {} evaluations, w_p = {:.2e}",
         o.reason,
@@ -258,13 +258,13 @@ fn summary(o: &Outcome) -> String {
     )
 }
 
-fn assert_converged(o: &Outcome, what: &str) {
+pub(super) fn assert_converged(o: &Outcome, what: &str) {
     assert!(o.converged && o.reason == StopReason::Converged, "{what}: {}", summary(o));
     assert!(o.stationarity.is_finite() && o.worst_violation.is_finite());
 }
 
 /// The two solvers' answers agree: x, F and the multipliers to 1e-6 (relative to 1 + |value|).
-fn assert_agree(a: &Outcome, b: &Outcome, what: &str) {
+pub(super) fn assert_agree(a: &Outcome, b: &Outcome, what: &str) {
     let close = |p: &[f64], q: &[f64]| p.iter().zip(q).all(|(u, v)| (u - v).abs() <= 1e-6 * (1.0 + u.abs()));
     assert!(close(&a.x, &b.x), "{what}: x differ by {}", max_diff(&a.x, &b.x));
     assert!(close(&[a.objective], &[b.objective]), "{what}: F {} vs {}", a.objective, b.objective);
@@ -553,11 +553,11 @@ fn solve_settings_deserialise_with_defaults() {
 /// Minimum "torque" for a pendulum discretised by finite differences: τᵢ = q̈ᵢ + c sin qᵢ at interior
 /// nodes, ends fixed by equalities, and a torque limit |τᵢ| ≤ τ_max. The residuals stay large at the
 /// optimum (holding against gravity), which is where Gauss–Newton is slow.
-struct Pendulum {
-    n: usize,
-    duration: f64,
-    c: f64,
-    tau_max: f64,
+pub(super) struct Pendulum {
+    pub(super) n: usize,
+    pub(super) duration: f64,
+    pub(super) c: f64,
+    pub(super) tau_max: f64,
 }
 
 impl Pendulum {

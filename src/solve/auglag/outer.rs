@@ -66,7 +66,7 @@ impl SlowWatch {
 }
 
 /// Checks what can be checked before the first evaluation.
-fn validate(dims: Dims, x0: &[f64], settings: &Settings) -> Result<(), String> {
+pub(crate) fn validate(dims: Dims, x0: &[f64], settings: &Settings) -> Result<(), String> {
     if x0.len() != dims.n {
         return Err(format!("x0 has {} entries, the problem {} unknowns", x0.len(), dims.n));
     }
@@ -107,7 +107,7 @@ fn validate(dims: Dims, x0: &[f64], settings: &Settings) -> Result<(), String> {
     Ok(())
 }
 
-fn invalid(x0: &[f64], message: String) -> Outcome {
+pub(crate) fn invalid(x0: &[f64], message: String) -> Outcome {
     Outcome {
         x: x0.to_vec(),
         objective: f64::NAN,

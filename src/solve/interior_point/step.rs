@@ -1,0 +1,166 @@
+//! One interior-point iteration: the reduced Newton matrix and right-hand side, the inertia correction, the
+//! direction `(dx, ds, dy, dv)` and the accepted step (module docs of [`super`]; the line search is in
+//! [`super::filter`]).
+
+use super::Ipm;
+use crate::solve::solver::StopReason;
+
+/// IPOPT's `τ_min`: the fraction of the distance to the bound a step may cover.
+pub(super) const TO_BOUNDARY: f64 = 0.99;
+/// Inertia correction `δ` (relative to the diagonal): the first nonzero one, its growth, its decay per
+/// accepted step, and the largest.
+const DELTA_FIRST: f64 = 1e-8;
+const DELTA_GROWTH: f64 = 10.0;
+const DELTA_DECAY: f64 = 1.0 / 3.0;
+const DELTA_MAX: f64 = 1e20;
+/// `δ_c = 1/ρ` of the equalities, relative to the largest diagonal entry of `JᵣᵀJᵣ` at the start.
+const EQUALITY_REGULARISATION: f64 = 1e-8;
+
+impl Ipm<'_> {
+    /// One accepted step (`Ok(true)`), or `Ok(false)` when no correction makes the line search succeed.
+    pub(super) fn step(&mut self) -> Result<bool, StopReason> {
+        self.assemble();
+        let mut delta = if self.delta > 0.0 { (self.delta * DELTA_DECAY).max(DELTA_FIRST) } else { 0.0 };
+        let mut restored = false;
+        loop {
+            if delta > DELTA_MAX {
+                return Ok(false);
+            }
+            if !self.factorise(delta) {
+                delta = if delta == 0.0 { DELTA_FIRST } else { delta * DELTA_GROWTH };
+                continue;
+            }
+            self.constraint_residuals();
+            self.direction();
+            if let Some(alpha) = self.filter_line_search()? {
+                self.delta = delta;
+                self.accept(alpha)?;
+                return Ok(true);
+            }
+            // No acceptable step along the Newton direction: restore feasibility if the constraints are not
+            // met, else a shorter, more gradient-like step.
+            if !restored && self.violation().0 > self.tol_violation {
+                restored = true;
+                if self.restore()? {
+                    return Ok(true);
+                }
+            }
+            delta = if delta == 0.0 { 1e-4 } else { (delta * DELTA_GROWTH).max(1e-4) };
+        }
+    }
+
+    /// The matrix `JᵣᵀJᵣ + ρJĥᵀJĥ + JĝᵀD⁻¹Jĝ + (the exact second-order term)` at `x`, and `D` from its diagonal.
+    fn assemble(&mut self) {
+        let e = &self.eval;
+        for i in 0..self.dims.n_ineq {
+            let sg = self.scales.ineq[i];
+            self.work_g[i] = self.v[i] / (self.s[i] * sg * sg);
+        }
+        for (w, s) in self.work_h.iter_mut().zip(&self.scales.eq) {
+            *w = self.rho / (s * s);
+        }
+        self.matrix.fill_zero();
+        let mut assembled = e.jr.add_gram_to(None, &mut self.matrix);
+        if self.rho == 0.0 {
+            let largest = (0..self.dims.n).map(|j| self.matrix.diagonal(j)).fold(1.0, f64::max);
+            self.rho = largest / EQUALITY_REGULARISATION;
+            for (w, s) in self.work_h.iter_mut().zip(&self.scales.eq) {
+                *w = self.rho / (s * s);
+            }
+        }
+        assembled = assembled
+            .and_then(|()| e.jg.add_gram_to(Some(&self.work_g), &mut self.matrix))
+            .and_then(|()| e.jh.add_gram_to(Some(&self.work_h), &mut self.matrix));
+        debug_assert!(assembled.is_ok(), "the band is sized from the patterns");
+        for (j, d) in self.scaling.iter_mut().enumerate() {
+            *d = d.max(self.matrix.diagonal(j));
+        }
+        // The second-order term with the Lagrangian's weights: r, y/s_h, v/s_g.
+        if self.exact != Some(false) {
+            for ((w, y), s) in self.work_h.iter_mut().zip(&self.y).zip(&self.scales.eq) {
+                *w = y / s;
+            }
+            for ((w, v), s) in self.work_g.iter_mut().zip(&self.v).zip(&self.scales.ineq) {
+                *w = v / s;
+            }
+            let weights = [&self.eval.r[..], &self.work_h[..], &self.work_g[..]];
+            let provided = self.problem.add_second_order(&self.x, weights, &mut self.matrix);
+            self.exact = Some(provided);
+        }
+    }
+
+    /// Factorises the matrix plus `δ·diag`; `false` if it is not positive definite.
+    fn factorise(&mut self, delta: f64) -> bool {
+        for (s, d) in self.shift.iter_mut().zip(&self.scaling) {
+            *s = delta * if *d > 0.0 { *d } else { 1.0 };
+        }
+        let shift = (delta > 0.0).then_some(&self.shift[..]);
+        self.factor.factor(&self.matrix, shift).is_ok()
+    }
+
+    /// The constraints' residuals the step is to remove: `c_h = ĥ`, `c_g = ĝ + s` at the current point.
+    pub(super) fn constraint_residuals(&mut self) {
+        let e = &self.eval;
+        for ((c, h), s) in self.c_h.iter_mut().zip(&e.h).zip(&self.scales.eq) {
+            *c = h / s;
+        }
+        for i in 0..self.dims.n_ineq {
+            self.c_g[i] = e.g[i] / self.scales.ineq[i] + self.s[i];
+        }
+    }
+
+    /// `dx` from the factor, then `dy`, `dv`, `ds` (module docs), for the residuals `c_h`, `c_g` (the
+    /// constraints at `x`, or a second-order correction's).
+    pub(super) fn direction(&mut self) {
+        let e = &self.eval;
+        for i in 0..self.dims.n_ineq {
+            let (s, v) = (self.s[i], self.v[i]);
+            self.work_g[i] = (self.mu / s + v / s * self.c_g[i]) / self.scales.ineq[i];
+        }
+        for k in 0..self.dims.n_eq {
+            self.work_h[k] = (self.y[k] + self.rho * self.c_h[k]) / self.scales.eq[k];
+        }
+        e.jr.tr_mul_vec(&e.r, &mut self.dx);
+        e.jg.tr_mul_vec_add(1.0, &self.work_g, &mut self.dx);
+        e.jh.tr_mul_vec_add(1.0, &self.work_h, &mut self.dx);
+        self.dx.iter_mut().for_each(|d| *d = -*d);
+        self.factor.solve_in_place(&mut self.dx);
+        // dy = ρ(Jĥ dx + ĥ)
+        e.jh.mul_vec(&self.dx, &mut self.dy);
+        for k in 0..self.dims.n_eq {
+            self.dy[k] = self.rho * (self.dy[k] / self.scales.eq[k] + self.c_h[k]);
+        }
+        // ds = −(ĝ + s) − Jĝ dx,  dv = μ/s − v − (v/s) ds
+        e.jg.mul_vec(&self.dx, &mut self.ds);
+        for i in 0..self.dims.n_ineq {
+            let (s, v) = (self.s[i], self.v[i]);
+            self.ds[i] = -self.ds[i] / self.scales.ineq[i] - self.c_g[i];
+            self.dv[i] = self.mu / s - v - v / s * self.ds[i];
+        }
+    }
+
+    /// The largest step in `(0, 1]` keeping `u + α du ≥ (1 − τ) u`.
+    pub(super) fn to_boundary(u: &[f64], du: &[f64], tau: f64) -> f64 {
+        u.iter().zip(du).filter(|(_, d)| **d < 0.0).map(|(u, d)| -tau * u / d).fold(1.0, f64::min)
+    }
+
+    /// Takes the step of length `alpha` (the dual one to its own boundary) and re-evaluates with Jacobians.
+    fn accept(&mut self, alpha: f64) -> Result<(), StopReason> {
+        std::mem::swap(&mut self.x, &mut self.x_trial);
+        std::mem::swap(&mut self.s, &mut self.s_trial);
+        let x = std::mem::take(&mut self.x);
+        let evaluated = self.evaluate_at(&x, true);
+        self.x = x;
+        evaluated.map_err(|e| StopReason::EvaluationError(e.to_string()))?;
+        let tau = TO_BOUNDARY;
+        let alpha_v = Self::to_boundary(&self.v, &self.dv, tau);
+        for (y, d) in self.y.iter_mut().zip(&self.dy) {
+            *y += alpha * d;
+        }
+        for (v, d) in self.v.iter_mut().zip(&self.dv) {
+            *v += alpha_v * d;
+        }
+        self.safeguard_multipliers();
+        Ok(())
+    }
+}
