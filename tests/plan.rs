@@ -56,7 +56,7 @@ fn pendulum_optimum_is_the_free_swing() {
     assert!((end - q1).abs().to_degrees() < 0.05, "free swing ends at {:.3}°", end.to_degrees());
     let mut spec = Spec::new(m.clone(), vec![q0], vec![q1], half_period);
     spec.n_ctrl = 16;
-    for solver in [SolverKind::Structured, SolverKind::Newton, SolverKind::AuglagBfgs] {
+    for solver in [SolverKind::Structured, SolverKind::Newton, SolverKind::InteriorPoint, SolverKind::AuglagBfgs] {
         let planned = plan::plan(&spec, solver, &Settings::default(), &mut |_| {}).unwrap();
         assert!(planned.converged(), "{solver:?}: {}", planned.outcome.reason);
         let times: Vec<f64> = (0..=200).map(|k| half_period * k as f64 / 200.0).collect();

@@ -111,9 +111,9 @@ pub fn plan(
             "newton" => Ok(SolverKind::Newton),
             "interior-point" => Ok(SolverKind::InteriorPoint),
             "auglag-bfgs" => Ok(SolverKind::AuglagBfgs),
-            other => Err(error(format!(
-                "solver: \"{other}\" is not a solver: structured, newton or auglag-bfgs (or the experimental interior-point)"
-            ))),
+            other => {
+                Err(error(format!("solver: \"{other}\" is not a solver: structured, newton, interior-point or auglag-bfgs")))
+            }
         })
         .transpose()?;
     let overrides = Overrides { solver, control_points, starts, refine: false };

@@ -124,13 +124,16 @@ pub(super) fn run_start(
     // contact forces λ·∂²Φ), so Levenberg–Marquardt can crawl or stall just short of the stationarity test.
     // A polish from where it stopped, warm-started with its multipliers, supplies that curvature — with
     // what is left of the same budget: Newton (the exact second-order term) after Gauss–Newton, then the
-    // paper's BFGS if that did not converge either.
+    // paper's BFGS if that did not converge either. Where the interior point stalls (its equalities'
+    // multipliers converging only linearly, or a stall short of the optimum), the structured solver finishes
+    // from its point — with fresh multipliers: the barrier's are no augmented Lagrangian's.
     let polishers: &[SolverKind] = match solver {
         SolverKind::Structured => &[SolverKind::Newton, SolverKind::AuglagBfgs],
         SolverKind::Newton => &[SolverKind::AuglagBfgs],
-        SolverKind::InteriorPoint => &[],
+        SolverKind::InteriorPoint => &[SolverKind::Structured],
         SolverKind::AuglagBfgs => &[],
     };
+    let from_interior_point = solver == SolverKind::InteriorPoint;
     let mut polished = false;
     // Every phase spends from the one budget, kept or not: `spent` counts them all.
     let mut spent = Spent::of(&outcome);
@@ -140,8 +143,8 @@ pub(super) fn run_start(
             break;
         }
         let polish_settings = Settings {
-            warm_start: Some(outcome.multipliers.clone()),
-            initial_penalty: Some(outcome.penalty),
+            warm_start: (!from_interior_point).then(|| outcome.multipliers.clone()),
+            initial_penalty: (!from_interior_point).then_some(outcome.penalty),
             max_iterations: left,
             time_limit: remaining(deadline),
             ..settings.clone()

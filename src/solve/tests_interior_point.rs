@@ -66,7 +66,7 @@ fn interior_point_on_an_infeasible_problem_says_so() {
 
 /// Hock–Schittkowski 71 (nonlinear equality and inequality, bounds): the published optimum, the same as the
 /// structured solver's. Not yet: this test problem provides no second-order term, and without the sphere's
-/// curvature in the model the solver stops short of feasibility on `Σx² = 40` (0.58, 157 iterations) where
+/// curvature in the model the solver stops short of feasibility on `Σx² = 40` (0.18, 163 iterations) where
 /// the augmented Lagrangian converges with the same Gauss–Newton model.
 #[test]
 #[ignore = "the experimental interior-point solver stops short of feasibility here; enable when it converges"]

@@ -231,8 +231,6 @@ pub(crate) enum MimicArg {
 pub(crate) enum SolverArg {
     Structured,
     Newton,
-    /// Experimental: stalls on most bundled examples (docs/performance.md); hidden from the help.
-    #[value(hide = true)]
     InteriorPoint,
     AuglagBfgs,
 }

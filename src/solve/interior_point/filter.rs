@@ -6,7 +6,7 @@
 //! residuals `α c(x) + c(x + αd)`, so that curved constraints do not cut every step short (Maratos).
 
 use super::step::TO_BOUNDARY;
-use super::Ipm;
+use super::{relaxed, Ipm};
 use crate::solve::line_search::{dot, EvalError};
 use crate::solve::solver::StopReason;
 
@@ -65,7 +65,7 @@ impl Ipm<'_> {
     fn theta_phi(&self, at_trial: bool) -> (f64, f64) {
         let (e, slack) = if at_trial { (&self.trial, &self.s_trial) } else { (&self.eval, &self.s) };
         let eq: f64 = e.h.iter().zip(&self.scales.eq).map(|(h, s)| (h / s).abs()).sum();
-        let ineq: f64 = (0..self.dims.n_ineq).map(|i| (e.g[i] / self.scales.ineq[i] + slack[i]).abs()).sum();
+        let ineq: f64 = (0..self.dims.n_ineq).map(|i| (relaxed(e.g[i], self.scales.ineq[i], self.relax) + slack[i]).abs()).sum();
         let barrier: f64 = slack.iter().map(|s| s.ln()).sum();
         (eq + ineq, e.objective() - self.mu * barrier)
     }
@@ -158,7 +158,7 @@ impl Ipm<'_> {
             *c = alpha * *c + h / s;
         }
         for i in 0..self.dims.n_ineq {
-            self.c_g[i] = alpha * self.c_g[i] + self.trial.g[i] / self.scales.ineq[i] + self.s_trial[i];
+            self.c_g[i] = alpha * self.c_g[i] + relaxed(self.trial.g[i], self.scales.ineq[i], self.relax) + self.s_trial[i];
         }
         let [dx, ds, dy, dv] = &mut self.saved;
         dx.copy_from_slice(&self.dx);

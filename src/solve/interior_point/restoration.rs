@@ -4,7 +4,7 @@
 //! slacks restart at `max(−ĝ, κ)`, the inequality multipliers at `μ/s`, and the filter empties (in the
 //! spirit of IPOPT's restoration phase, without its proximal objective).
 
-use super::Ipm;
+use super::{relaxed, Ipm};
 use crate::solve::line_search::{dot, EvalError};
 use crate::solve::solver::StopReason;
 
@@ -110,7 +110,7 @@ impl Ipm<'_> {
     /// After the phase: `s = max(−ĝ, κ)`, `v = μ/s`, an empty filter.
     fn restart_slacks(&mut self) {
         for i in 0..self.dims.n_ineq {
-            self.s[i] = (-self.eval.g[i] / self.scales.ineq[i]).max(SLACK_FLOOR);
+            self.s[i] = (-relaxed(self.eval.g[i], self.scales.ineq[i], self.relax)).max(SLACK_FLOOR);
             self.v[i] = self.mu / self.s[i];
         }
         self.filter.reset();

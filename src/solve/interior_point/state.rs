@@ -3,6 +3,7 @@
 
 use std::time::{Duration, Instant};
 
+use super::relaxed;
 use crate::solve::auglag::{assess_at, invalid, validate, violation_at, Assessment};
 use crate::solve::linalg::{Cholesky, SymmetricMatrix};
 use crate::solve::line_search::{norm_inf, EvalError};
@@ -68,8 +69,9 @@ pub(crate) struct Ipm<'a> {
     barrier_updates: usize,
     pub(super) evaluations: usize,
     deadline: Option<Instant>,
-    /// The settings' violation tolerance.
+    /// The settings' violation tolerance, and the relaxation `ε` of the inequalities ([`super::RELAX`]).
     pub(super) tol_violation: f64,
+    pub(super) relax: f64,
     warm_guard: Option<(f64, f64)>,
     settings_cancel: crate::solve::Cancel,
 }
@@ -128,6 +130,7 @@ impl<'a> Ipm<'a> {
             barrier_updates: 0,
             evaluations: 0,
             tol_violation: settings.tol_violation,
+            relax: super::RELAX * settings.tol_violation,
             deadline: settings.time_limit.map(|t| started + Duration::from_secs_f64(t)),
             warm_guard: None,
             settings_cancel: settings.cancel.clone(),
@@ -155,18 +158,18 @@ impl<'a> Ipm<'a> {
             }
             self.mu = settings.tol_stationarity * 0.1 * (1.0 + f.abs());
             for (i, l) in w.lambda.iter().enumerate() {
-                let slack = (-self.eval.g[i] / self.scales.ineq[i]).max(1e-8);
+                let slack = (-relaxed(self.eval.g[i], self.scales.ineq[i], self.relax)).max(1e-8);
                 self.v[i] = (l * self.scales.ineq[i]).max(self.mu / slack);
             }
         } else {
             self.mu = FIRST_BARRIER * self.f_scale / (self.dims.n_ineq.max(1) as f64);
             for i in 0..self.dims.n_ineq {
-                let slack = (-self.eval.g[i] / self.scales.ineq[i]).max(1e-2);
+                let slack = (-relaxed(self.eval.g[i], self.scales.ineq[i], self.relax)).max(1e-2);
                 self.v[i] = self.mu / slack;
             }
         }
         for i in 0..self.dims.n_ineq {
-            self.s[i] = (-self.eval.g[i] / self.scales.ineq[i]).max(1e-2);
+            self.s[i] = (-relaxed(self.eval.g[i], self.scales.ineq[i], self.relax)).max(1e-2);
         }
         if settings.warm_start.is_some() {
             let start = self.assess(settings).violation;
@@ -216,7 +219,7 @@ impl<'a> Ipm<'a> {
     pub(super) fn theta(&self) -> f64 {
         let e = &self.eval;
         let eq = e.h.iter().zip(&self.scales.eq).map(|(h, s)| (h / s).abs());
-        let ineq = e.g.iter().zip(&self.scales.ineq).zip(&self.s).map(|((g, sc), s)| (g / sc + s).abs());
+        let ineq = e.g.iter().zip(&self.scales.ineq).zip(&self.s).map(|((g, sc), s)| (relaxed(*g, *sc, self.relax) + s).abs());
         eq.chain(ineq).fold(0.0, f64::max)
     }
 
@@ -281,22 +284,24 @@ impl<'a> Ipm<'a> {
         }
     }
 
+    pub(super) fn iterations_done(&self) -> usize {
+        self.iterations
+    }
+
     /// Counts an accepted step.
     pub(super) fn count_step(&mut self) {
         self.iterations += 1;
     }
 
-    /// Tells the observer about the step just taken.
-    pub(super) fn report(&mut self) {
-        let objective = self.eval.objective();
-        let violation = self.violation().0;
+    /// Tells the observer about the step just taken, with the convergence test's figures at its end.
+    pub(super) fn report(&mut self, a: &Assessment) {
         let progress = Progress {
             outer_iteration: self.barrier_updates,
             iteration: self.iterations,
             evaluations: self.evaluations,
-            objective,
-            violation,
-            stationarity: norm_inf(&self.gradient) / (1.0 + objective.abs()),
+            objective: a.objective,
+            violation: a.violation,
+            stationarity: a.stationarity.max(a.complementarity),
             penalty: self.rho / 2.0,
             model: if self.exact == Some(true) { "interior-point" } else { "interior-point-gauss-newton" },
             damping: self.delta,

@@ -2,7 +2,7 @@
 //! direction `(dx, ds, dy, dv)` and the accepted step (module docs of [`super`]; the line search is in
 //! [`super::filter`]).
 
-use super::Ipm;
+use super::{relaxed, Ipm};
 use crate::solve::solver::StopReason;
 
 /// IPOPT's `τ_min`: the fraction of the distance to the bound a step may cover.
@@ -13,8 +13,15 @@ const DELTA_FIRST: f64 = 1e-8;
 const DELTA_GROWTH: f64 = 10.0;
 const DELTA_DECAY: f64 = 1.0 / 3.0;
 const DELTA_MAX: f64 = 1e20;
-/// `δ_c = 1/ρ` of the equalities, relative to the largest diagonal entry of `JᵣᵀJᵣ` at the start.
-const EQUALITY_REGULARISATION: f64 = 1e-8;
+/// `δ_c = 1/ρ` of the equalities, relative to the largest diagonal entry of `JᵣᵀJᵣ` at the start. The
+/// multipliers' step `dy = ρ(Jĥ dx + ĥ)` carries `ρ` times the residual's rounding: at 10⁻⁸ that noise
+/// (|dy| ≈ 10⁵ at the push-up's optimum) kept the stationarity test from ever holding; at 10⁻⁴ the
+/// push-up, twist lift and 18 more examples converge (docs/performance.md).
+const EQUALITY_REGULARISATION: f64 = 1e-4;
+/// Iterations on the Gauss–Newton model `JᵣᵀJᵣ` before the exact second-order term joins it: far from a
+/// solution the exact Hessian's long steps along its weak directions are cut to nothing by the line search
+/// (the arm lifts, chin-ups, stoops stalled); near it the curvature gives the fast finish.
+const GAUSS_NEWTON_FIRST: usize = 30;
 
 impl Ipm<'_> {
     /// One accepted step (`Ok(true)`), or `Ok(false)` when no correction makes the line search succeed.
@@ -49,7 +56,8 @@ impl Ipm<'_> {
         }
     }
 
-    /// The matrix `JᵣᵀJᵣ + ρJĥᵀJĥ + JĝᵀD⁻¹Jĝ + (the exact second-order term)` at `x`, and `D` from its diagonal.
+    /// The matrix `JᵣᵀJᵣ + ρJĥᵀJĥ + JĝᵀΣJĝ` (+ the exact second-order term after [`GAUSS_NEWTON_FIRST`]
+    /// iterations) at `x`, and Moré's scaling from its diagonal.
     fn assemble(&mut self) {
         let e = &self.eval;
         for i in 0..self.dims.n_ineq {
@@ -76,7 +84,7 @@ impl Ipm<'_> {
             *d = d.max(self.matrix.diagonal(j));
         }
         // The second-order term with the Lagrangian's weights: r, y/s_h, v/s_g.
-        if self.exact != Some(false) {
+        if self.iterations_done() >= GAUSS_NEWTON_FIRST && self.exact != Some(false) {
             for ((w, y), s) in self.work_h.iter_mut().zip(&self.y).zip(&self.scales.eq) {
                 *w = y / s;
             }
@@ -105,7 +113,7 @@ impl Ipm<'_> {
             *c = h / s;
         }
         for i in 0..self.dims.n_ineq {
-            self.c_g[i] = e.g[i] / self.scales.ineq[i] + self.s[i];
+            self.c_g[i] = relaxed(e.g[i], self.scales.ineq[i], self.relax) + self.s[i];
         }
     }
 
