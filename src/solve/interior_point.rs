@@ -7,10 +7,11 @@
 //!
 //! **Status** (docs/performance.md, "A primal-dual interior-point solver"): with the automatic starts it
 //! converges on all 35 tasks of the benchmark and reaches F ≤ 1.001 × IPOPT's on every peer task (the
-//! structured solver: 1.030 and 1.033 on two); one start converges on 31 of 35, most in far fewer steps
-//! (the 37-DOF handrail 31 against 404). The rest stall in the end game (the equalities' multipliers converge
-//! linearly at a fixed `δ_c`) and are finished by the structured solver from where they stopped
-//! (`plan/run.rs`). The push-up's closed loop converges at 19 of the 21 N from 12 to 32.
+//! structured solver: 1.030 and 1.033 on two); one start converges on 31 of 35 by itself, most in far fewer
+//! steps (the 37-DOF handrail 31 against 404; the 36-DOF wave-step in 0.91 s), and the other 4 stall in the end
+//! game (the equalities' multipliers converge linearly at a fixed `δ_c`) and are finished by the structured
+//! solver from where they stopped (`plan/run.rs`). The push-up's closed loop converges at 19 of the 21 N from
+//! 12 to 32.
 //!
 //! # The barrier subproblem
 //!
@@ -35,7 +36,8 @@
 //! ```
 //!
 //! `δ` (the inertia correction, relative to the diagonal) grows from 0 until the Cholesky succeeds. For its
-//! first 30 iterations `W` is Gauss–Newton's `JᵣᵀJᵣ`: far from a solution the exact Hessian's long steps along
+//! first 30 iterations `W` is Gauss–Newton's `JᵣᵀJᵣ`, after that the exact term joins it, recomputed every
+//! 3 iterations: far from a solution the exact Hessian's long steps along
 //! its weak directions are cut to nothing by the line search; near one its curvature gives the fast finish.
 //! The barrier sees the rows relaxed, `ĝ ≤ ε` (IPOPT's `bound_relax_factor`, `ε = 0.01 tol_violation`), so
 //! that a row held on its bound by fixed unknowns keeps an interior.

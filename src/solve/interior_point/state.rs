@@ -65,8 +65,10 @@ pub(crate) struct Ipm<'a> {
     pub(super) delta: f64,
     /// Whether the problem provides the second-order term (asked at the first step).
     pub(super) exact: Option<bool>,
-    iterations: usize,
+    pub(super) iterations: usize,
     barrier_updates: usize,
+    /// The exact second-order term as last computed.
+    pub(super) term: Option<SymmetricMatrix>,
     pub(super) evaluations: usize,
     deadline: Option<Instant>,
     /// The settings' violation tolerance, and the relaxation `ε` of the inequalities ([`super::RELAX`]).
@@ -128,6 +130,7 @@ impl<'a> Ipm<'a> {
             exact: None,
             iterations: 0,
             barrier_updates: 0,
+            term: None,
             evaluations: 0,
             tol_violation: settings.tol_violation,
             relax: super::RELAX * settings.tol_violation,

@@ -22,6 +22,10 @@ const EQUALITY_REGULARISATION: f64 = 1e-4;
 /// solution the exact Hessian's long steps along its weak directions are cut to nothing by the line search
 /// (the arm lifts, chin-ups, stoops stalled); near it the curvature gives the fast finish.
 const GAUSS_NEWTON_FIRST: usize = 30;
+/// Iterations between recomputations of the exact term (kept in between, with the multipliers it was made
+/// with): every 3 halves the solve time at 13–37 DOF for about the same iterations (h36 wave-step 1.88 →
+/// 0.88 s, the moon reach 9.2 → 5.0 s); every 5 lost iterations on h21 (docs/performance.md).
+const EXACT_REFRESH: usize = 3;
 
 impl Ipm<'_> {
     /// One accepted step (`Ok(true)`), or `Ok(false)` when no correction makes the line search succeed.
@@ -83,17 +87,24 @@ impl Ipm<'_> {
         for (j, d) in self.scaling.iter_mut().enumerate() {
             *d = d.max(self.matrix.diagonal(j));
         }
-        // The second-order term with the Lagrangian's weights: r, y/s_h, v/s_g.
-        if self.iterations_done() >= GAUSS_NEWTON_FIRST && self.exact != Some(false) {
+        // The second-order term with the Lagrangian's weights r, y/s_h, v/s_g, recomputed every EXACT_REFRESH.
+        if self.iterations >= GAUSS_NEWTON_FIRST && self.exact != Some(false) {
             for ((w, y), s) in self.work_h.iter_mut().zip(&self.y).zip(&self.scales.eq) {
                 *w = y / s;
             }
             for ((w, v), s) in self.work_g.iter_mut().zip(&self.v).zip(&self.scales.ineq) {
                 *w = v / s;
             }
-            let weights = [&self.eval.r[..], &self.work_h[..], &self.work_g[..]];
-            let provided = self.problem.add_second_order(&self.x, weights, &mut self.matrix);
-            self.exact = Some(provided);
+            let term = self.term.get_or_insert_with(|| self.matrix.clone());
+            if (self.iterations - GAUSS_NEWTON_FIRST).is_multiple_of(EXACT_REFRESH) || self.exact.is_none() {
+                term.fill_zero();
+                let weights = [&self.eval.r[..], &self.work_h[..], &self.work_g[..]];
+                let provided = self.problem.add_second_order(&self.x, weights, term);
+                self.exact = Some(provided);
+            }
+            if self.exact == Some(true) {
+                self.matrix.add_matrix(self.term.as_ref().expect("set above"));
+            }
         }
     }
 
