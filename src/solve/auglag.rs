@@ -23,12 +23,12 @@ use std::time::Instant;
 
 use super::linalg::SymmetricMatrix;
 use super::line_search::{norm_inf, EvalError, Iterate, Objective};
-use super::problem::{ConstraintKind, Dims, Evaluation, Problem, Scales};
+use super::problem::{evaluate_checked, ConstraintKind, Dims, Evaluation, Problem, Scales};
 use super::solver::{Progress, Settings};
 use super::sparse::PatternError;
 
 pub use bfgs_inner::AugLagBfgs;
-pub(crate) use outer::{invalid, solve_with, validate};
+pub(crate) use outer::{checked_setup, solve_with, stopped_at_start};
 
 /// Multipliers are kept within ±this (ALGENCAN's safeguard), so an infeasible problem cannot overflow them.
 const MULTIPLIER_BOUND: f64 = 1e20;
@@ -190,20 +190,7 @@ impl<'a> AugmentedLagrangian<'a> {
         self.evaluations += 1;
         self.evaluated = Evaluated::Nothing;
         self.x_eval.copy_from_slice(x);
-        if want_jac && !self.problem.writes_whole_jacobians() {
-            self.eval.jr.fill_zero();
-            self.eval.jh.fill_zero();
-            self.eval.jg.fill_zero();
-        }
-        self.problem.evaluate(x, want_jac, &mut self.eval).map_err(EvalError::Failed)?;
-        let d = self.dims;
-        if self.eval.r.len() != d.n_res || self.eval.h.len() != d.n_eq || self.eval.g.len() != d.n_ineq {
-            return Err(EvalError::Failed("evaluate changed the length of r, h or g".into()));
-        }
-        let problem = &*self.problem;
-        if let Some(what) = self.eval.first_non_finite(want_jac, &|family, i| problem.row_name(family, i)) {
-            return Err(EvalError::NonFinite(format!("non-finite {what} (evaluation {})", self.evaluations)));
-        }
+        evaluate_checked(&mut *self.problem, self.dims, x, want_jac, &mut self.eval, self.evaluations)?;
         self.evaluated = if want_jac { Evaluated::ValuesAndJacobians } else { Evaluated::Values };
         Ok(())
     }

@@ -100,7 +100,7 @@ impl Ipm<'_> {
         let mut since_best = 0;
         loop {
             let a = self.assess(settings);
-            if self.iterations_done() > 0 {
+            if self.iterations > 0 {
                 self.report(&a);
             }
             if a.converged {

@@ -173,7 +173,7 @@ enum Step {
 impl LevenbergMarquardt {
     fn new(eval: &Evaluation, second_order: bool) -> Self {
         let n = eval.jr.ncols();
-        let bandwidth = [&eval.jr, &eval.jh, &eval.jg].iter().map(|j| j.gram_bandwidth()).max().unwrap_or(0);
+        let bandwidth = eval.gram_bandwidth();
         // Banded even where the band covers the whole matrix: the grouped banded factorisation and Gram
         // assembly beat the dense ones there too (`moon_overhead_reach`, half-bandwidth n − 1: 4.1 → 2.5 s,
         // the same steps; docs/performance.md).

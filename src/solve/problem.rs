@@ -171,6 +171,11 @@ impl Evaluation {
         }
     }
 
+    /// Half-bandwidth of `JᵀJ` over the three Jacobians: the band a solver's matrix needs.
+    pub fn gram_bandwidth(&self) -> usize {
+        [&self.jr, &self.jh, &self.jg].iter().map(|j| j.gram_bandwidth()).max().unwrap_or(0)
+    }
+
     /// The Jacobian of one kind of rows.
     pub fn jacobian(&self, family: RowFamily) -> &SparseMatrix {
         match family {
@@ -285,4 +290,32 @@ pub(crate) fn checked_scales(problem: &dyn Problem, dims: Dims) -> Result<Scales
         eq: check(ConstraintKind::Equality, given.eq, dims.n_eq)?,
         ineq: check(ConstraintKind::Inequality, given.ineq, dims.n_ineq)?,
     })
+}
+
+/// Evaluates `problem` at `x` into `out` (with its Jacobians when `want_jac`, zeroed first unless the problem
+/// writes them whole), and checks what came back: the lengths of `r`, `h`, `g`, and that every value is
+/// finite, naming the first that is not (`evaluation` numbers the call in the message). Shared by the solvers.
+pub(crate) fn evaluate_checked(
+    problem: &mut dyn Problem,
+    d: Dims,
+    x: &[f64],
+    want_jac: bool,
+    out: &mut Evaluation,
+    evaluation: usize,
+) -> Result<(), super::line_search::EvalError> {
+    use super::line_search::EvalError;
+    if want_jac && !problem.writes_whole_jacobians() {
+        out.jr.fill_zero();
+        out.jh.fill_zero();
+        out.jg.fill_zero();
+    }
+    problem.evaluate(x, want_jac, out).map_err(EvalError::Failed)?;
+    if out.r.len() != d.n_res || out.h.len() != d.n_eq || out.g.len() != d.n_ineq {
+        return Err(EvalError::Failed("evaluate changed the length of r, h or g".into()));
+    }
+    let problem = &*problem;
+    if let Some(what) = out.first_non_finite(want_jac, &|family, i| problem.row_name(family, i)) {
+        return Err(EvalError::NonFinite(format!("non-finite {what} (evaluation {evaluation})")));
+    }
+    Ok(())
 }

@@ -108,11 +108,16 @@ pub(crate) fn validate(dims: Dims, x0: &[f64], settings: &Settings) -> Result<()
 }
 
 pub(crate) fn invalid(x0: &[f64], message: String) -> Outcome {
+    stopped_at_start(x0, StopReason::InvalidInput(message))
+}
+
+/// The outcome of a solve that ended before its first step (invalid input, a failed first evaluation).
+pub(crate) fn stopped_at_start(x0: &[f64], reason: StopReason) -> Outcome {
     Outcome {
         x: x0.to_vec(),
         objective: f64::NAN,
         converged: false,
-        reason: StopReason::InvalidInput(message),
+        reason,
         iterations: 0,
         outer_iterations: 0,
         evaluations: 0,
@@ -133,6 +138,20 @@ fn automatic_penalty(eval: &Evaluation, scales: &Scales) -> f64 {
     (5.0 * eval.objective().abs().max(1.0) / (0.5 * c2).max(1.0)).clamp(1e-8, 1e8)
 }
 
+/// What every solver checks and builds before its first evaluation: the sizes, `x₀` and the settings
+/// validated, the evaluation buffers on the Jacobians' patterns, and the scales checked.
+pub(crate) fn checked_setup(
+    problem: &mut dyn Problem,
+    x0: &[f64],
+    settings: &Settings,
+) -> Result<(Dims, Evaluation, Scales), String> {
+    let dims = problem.dims();
+    validate(dims, x0, settings)?;
+    let eval = Evaluation::new(dims, &problem.jacobian_patterns()).map_err(|e| e.to_string())?;
+    let scales = checked_scales(&*problem, dims).map_err(|e| e.to_string())?;
+    Ok((dims, eval, scales))
+}
+
 impl<'a> AugmentedLagrangian<'a> {
     /// Checks the problem and settings and sets up the buffers; does not evaluate.
     pub(crate) fn new(
@@ -142,10 +161,7 @@ impl<'a> AugmentedLagrangian<'a> {
         settings: &Settings,
         started: Instant,
     ) -> Result<Self, String> {
-        let dims = problem.dims();
-        validate(dims, x0, settings)?;
-        let eval = Evaluation::new(dims, &problem.jacobian_patterns()).map_err(|e| e.to_string())?;
-        let scales = checked_scales(&*problem, dims).map_err(|e| e.to_string())?;
+        let (dims, eval, scales) = checked_setup(problem, x0, settings)?;
         // Warm-start multipliers into the scaled space: λ̂ = λ s, so that λ̂ ĝ = λ g.
         let (lambda, mu): (Vec<f64>, Vec<f64>) = match &settings.warm_start {
             Some(w) => (

@@ -71,10 +71,8 @@ impl Ipm<'_> {
     }
 
     /// `∇φ · (dx, ds) = (Jᵣᵀr)·dx − μ Σ dsᵢ/sᵢ`.
-    fn phi_slope(&mut self) -> f64 {
-        let e = &self.eval;
-        e.jr.tr_mul_vec(&e.r, &mut self.gradient);
-        dot(&self.gradient, &self.dx) - self.s.iter().zip(&self.ds).map(|(s, d)| self.mu * d / s).sum::<f64>()
+    fn phi_slope(&self) -> f64 {
+        dot(&self.grad_f, &self.dx) - self.s.iter().zip(&self.ds).map(|(s, d)| self.mu * d / s).sum::<f64>()
     }
 
     /// Evaluates `x + α dx`, `s + α ds` into the trial buffers; `(θ, φ)` there (`φ = ∞` if not finite).

@@ -107,8 +107,8 @@ impl Ipm<'_> {
         Ok(false)
     }
 
-    /// After the phase: `s = max(−ĝ, κ)`, `v = μ/s`, an empty filter.
-    fn restart_slacks(&mut self) {
+    /// `s = max(−ĝ, κ)`, `v = μ/s`, an empty filter: at the start, and after the phase.
+    pub(super) fn restart_slacks(&mut self) {
         for i in 0..self.dims.n_ineq {
             self.s[i] = (-relaxed(self.eval.g[i], self.scales.ineq[i], self.relax)).max(SLACK_FLOOR);
             self.v[i] = self.mu / self.s[i];

@@ -4,10 +4,10 @@
 use std::time::{Duration, Instant};
 
 use super::relaxed;
-use crate::solve::auglag::{assess_at, invalid, validate, violation_at, Assessment};
+use crate::solve::auglag::{assess_at, checked_setup, stopped_at_start, violation_at, Assessment};
 use crate::solve::linalg::{Cholesky, SymmetricMatrix};
 use crate::solve::line_search::{norm_inf, EvalError};
-use crate::solve::problem::{checked_scales, ConstraintKind, Dims, Evaluation, Problem, Scales};
+use crate::solve::problem::{evaluate_checked, ConstraintKind, Dims, Evaluation, Problem, Scales};
 use crate::solve::solver::{ConstraintRef, Multipliers, Outcome, Progress, Settings, StopReason, DIVERGED_VIOLATION};
 
 /// The first barrier parameter, relative to the objective's scale `max(1, |F(x₀)|)` per inequality (so that
@@ -51,6 +51,8 @@ pub(crate) struct Ipm<'a> {
     pub(super) work_h: Vec<f64>,
     pub(super) work_g: Vec<f64>,
     pub(super) gradient: Vec<f64>,
+    /// `∇F = Jᵣᵀr` at `x` (set with each evaluation of the Jacobians).
+    pub(super) grad_f: Vec<f64>,
     /// The constraints' residuals a direction removes (`ĥ`, `ĝ + s`, or a second-order correction's), and
     /// the last direction kept while a correction is tried.
     pub(super) c_h: Vec<f64>,
@@ -88,12 +90,9 @@ impl<'a> Ipm<'a> {
         settings: &Settings,
         started: Instant,
     ) -> Result<Self, Box<Outcome>> {
-        let dims = problem.dims();
-        validate(dims, x0, settings).map_err(|m| Box::new(invalid(x0, m)))?;
-        let eval = Evaluation::new(dims, &problem.jacobian_patterns()).map_err(|e| Box::new(invalid(x0, e.to_string())))?;
-        let scales = checked_scales(&*problem, dims).map_err(|e| Box::new(invalid(x0, e.to_string())))?;
-        let bandwidth = [&eval.jr, &eval.jh, &eval.jg].iter().map(|j| j.gram_bandwidth()).max().unwrap_or(0);
-        let matrix = SymmetricMatrix::banded(dims.n, bandwidth);
+        let (dims, eval, scales) =
+            checked_setup(problem, x0, settings).map_err(|m| Box::new(stopped_at_start(x0, StopReason::InvalidInput(m))))?;
+        let matrix = SymmetricMatrix::banded(dims.n, eval.gram_bandwidth());
         let (n, m, p) = (dims.n, dims.n_ineq, dims.n_eq);
         let mut ipm = Ipm {
             problem,
@@ -119,6 +118,7 @@ impl<'a> Ipm<'a> {
             work_h: vec![0.0; p],
             work_g: vec![0.0; m],
             gradient: vec![0.0; n],
+            grad_f: vec![0.0; n],
             c_h: vec![0.0; p],
             c_g: vec![0.0; m],
             saved: [vec![0.0; n], vec![0.0; m], vec![0.0; p], vec![0.0; m]],
@@ -138,11 +138,7 @@ impl<'a> Ipm<'a> {
             warm_guard: None,
             settings_cancel: settings.cancel.clone(),
         };
-        ipm.start(settings).map_err(|reason| {
-            let mut outcome = invalid(x0, String::new());
-            outcome.reason = reason;
-            Box::new(outcome)
-        })?;
+        ipm.start(settings).map_err(|reason| Box::new(stopped_at_start(x0, reason)))?;
         Ok(ipm)
     }
 
@@ -154,25 +150,22 @@ impl<'a> Ipm<'a> {
         evaluated.map_err(|e| StopReason::EvaluationError(format!("at the starting point: {e}")))?;
         let f = self.eval.objective();
         self.f_scale = f.abs().max(1.0);
+        self.mu = match settings.warm_start {
+            // Resuming near a solution: a barrier at the tolerance.
+            Some(_) => settings.tol_stationarity * 0.1 * (1.0 + f.abs()),
+            None => FIRST_BARRIER * self.f_scale / (self.dims.n_ineq.max(1) as f64),
+        };
+        // s = max(−ĝ, κ), v = μ/s.
+        self.restart_slacks();
         if let Some(w) = &settings.warm_start {
-            // Resuming near a solution: the multipliers in the scaled space, a barrier at the tolerance.
+            // The given multipliers in the scaled space, each inequality's at least μ over its distance.
             for (y, (m, s)) in self.y.iter_mut().zip(w.mu.iter().zip(&self.scales.eq)) {
                 *y = m * s;
             }
-            self.mu = settings.tol_stationarity * 0.1 * (1.0 + f.abs());
             for (i, l) in w.lambda.iter().enumerate() {
                 let slack = (-relaxed(self.eval.g[i], self.scales.ineq[i], self.relax)).max(1e-8);
                 self.v[i] = (l * self.scales.ineq[i]).max(self.mu / slack);
             }
-        } else {
-            self.mu = FIRST_BARRIER * self.f_scale / (self.dims.n_ineq.max(1) as f64);
-            for i in 0..self.dims.n_ineq {
-                let slack = (-relaxed(self.eval.g[i], self.scales.ineq[i], self.relax)).max(1e-2);
-                self.v[i] = self.mu / slack;
-            }
-        }
-        for i in 0..self.dims.n_ineq {
-            self.s[i] = (-relaxed(self.eval.g[i], self.scales.ineq[i], self.relax)).max(1e-2);
         }
         if settings.warm_start.is_some() {
             let start = self.assess(settings).violation;
@@ -183,22 +176,13 @@ impl<'a> Ipm<'a> {
 
     /// Evaluates the problem at `x` into `eval` (with Jacobians) or `trial` (values only); catches failures
     /// and non-finite values, naming the row.
+    /// With Jacobians, also `∇F = Jᵣᵀr` into `grad_f` (the direction and the line search's slope read it).
     pub(super) fn evaluate_at(&mut self, x: &[f64], jacobians: bool) -> Result<(), EvalError> {
         self.evaluations += 1;
         let out = if jacobians { &mut self.eval } else { &mut self.trial };
-        if jacobians && !self.problem.writes_whole_jacobians() {
-            out.jr.fill_zero();
-            out.jh.fill_zero();
-            out.jg.fill_zero();
-        }
-        self.problem.evaluate(x, jacobians, out).map_err(EvalError::Failed)?;
-        let d = self.dims;
-        if out.r.len() != d.n_res || out.h.len() != d.n_eq || out.g.len() != d.n_ineq {
-            return Err(EvalError::Failed("evaluate changed the length of r, h or g".into()));
-        }
-        let problem = &*self.problem;
-        if let Some(what) = out.first_non_finite(jacobians, &|family, i| problem.row_name(family, i)) {
-            return Err(EvalError::NonFinite(format!("non-finite {what} (evaluation {})", self.evaluations)));
+        evaluate_checked(&mut *self.problem, self.dims, x, jacobians, out, self.evaluations)?;
+        if jacobians {
+            self.eval.jr.tr_mul_vec(&self.eval.r, &mut self.grad_f);
         }
         Ok(())
     }
@@ -285,10 +269,6 @@ impl<'a> Ipm<'a> {
         for (v, s) in self.v.iter_mut().zip(&self.s) {
             *v = v.clamp(self.mu / (MULTIPLIER_SAFEGUARD * s), MULTIPLIER_SAFEGUARD * self.mu / s);
         }
-    }
-
-    pub(super) fn iterations_done(&self) -> usize {
-        self.iterations
     }
 
     /// Counts an accepted step.

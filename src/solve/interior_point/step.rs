@@ -139,7 +139,7 @@ impl Ipm<'_> {
         for k in 0..self.dims.n_eq {
             self.work_h[k] = (self.y[k] + self.rho * self.c_h[k]) / self.scales.eq[k];
         }
-        e.jr.tr_mul_vec(&e.r, &mut self.dx);
+        self.dx.copy_from_slice(&self.grad_f);
         e.jg.tr_mul_vec_add(1.0, &self.work_g, &mut self.dx);
         e.jh.tr_mul_vec_add(1.0, &self.work_h, &mut self.dx);
         self.dx.iter_mut().for_each(|d| *d = -*d);
