@@ -64,6 +64,28 @@ impl SolverKind {
             SolverKind::AuglagBfgs => "auglag-bfgs (augmented Lagrangian + BFGS, the paper's method)",
         }
     }
+
+    /// The name a task file and `--solver` use.
+    pub fn id(&self) -> &'static str {
+        match self {
+            SolverKind::Structured => "structured",
+            SolverKind::Newton => "newton",
+            SolverKind::InteriorPoint => "interior-point",
+            SolverKind::AuglagBfgs => "auglag-bfgs",
+        }
+    }
+
+    /// The solvers that, in turn, finish a solve of this one that stalled short of the test, from where it
+    /// stopped (`plan/run.rs`): Newton then BFGS after Levenberg–Marquardt, BFGS after Newton, the structured
+    /// solver after the interior point.
+    pub fn polishers(&self) -> &'static [SolverKind] {
+        match self {
+            SolverKind::Structured => &[SolverKind::Newton, SolverKind::AuglagBfgs],
+            SolverKind::Newton => &[SolverKind::AuglagBfgs],
+            SolverKind::InteriorPoint => &[SolverKind::Structured],
+            SolverKind::AuglagBfgs => &[],
+        }
+    }
 }
 
 /// The result of planning.
@@ -79,7 +101,7 @@ pub struct Plan {
     pub outcome: Outcome,
     /// The solver that produced it.
     pub solver: SolverKind,
-    /// Whether the structured solver's result was finished by a BFGS polish (see [`plan`]).
+    /// Whether the solver's result was finished by its polishers ([`SolverKind::polishers`]).
     pub polished: bool,
     /// `½∫τᵀWτ dt` of the initial guess (same quadrature).
     pub initial_objective: f64,

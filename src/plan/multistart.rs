@@ -153,7 +153,7 @@ pub struct StartReport {
     pub reason: String,
     /// Solver iterations.
     pub iterations: usize,
-    /// Whether a BFGS polish finished it.
+    /// Whether a polish ([`SolverKind::polishers`](super::SolverKind::polishers)) finished it.
     pub polished: bool,
     /// Wall-clock time of its solve (s).
     pub solve_seconds: f64,

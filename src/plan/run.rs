@@ -1,5 +1,5 @@
-//! Running a solve. One start is one or two phases — the chosen solver, then, where Levenberg–Marquardt
-//! stalls short of the test, a BFGS polish warm-started with its multipliers — under **one** iteration budget
+//! Running a solve. One start is one or more phases — the chosen solver, then, where it stalls short of the
+//! test, its polishers ([`SolverKind::polishers`]) from where it stopped — under **one** iteration budget
 //! and **one** time limit ([`Settings::max_iterations`], [`Settings::time_limit`]): the polish gets what the
 //! first phase left. Several starts ([`MultiStart`]) run in parallel and the best plan is kept.
 
@@ -127,12 +127,7 @@ pub(super) fn run_start(
     // paper's BFGS if that did not converge either. Where the interior point stalls (its equalities'
     // multipliers converging only linearly, or a stall short of the optimum), the structured solver finishes
     // from its point — with fresh multipliers: the barrier's are no augmented Lagrangian's.
-    let polishers: &[SolverKind] = match solver {
-        SolverKind::Structured => &[SolverKind::Newton, SolverKind::AuglagBfgs],
-        SolverKind::Newton => &[SolverKind::AuglagBfgs],
-        SolverKind::InteriorPoint => &[SolverKind::Structured],
-        SolverKind::AuglagBfgs => &[],
-    };
+    let polishers = solver.polishers();
     let from_interior_point = solver == SolverKind::InteriorPoint;
     let mut polished = false;
     // Every phase spends from the one budget, kept or not: `spent` counts them all.

@@ -214,7 +214,7 @@ impl Summary {
             },
             objective_terms: terms_of(spec, plan),
             initial_guess_objective: plan.initial_objective,
-            solver: if plan.polished { format!("{} + BFGS polish", plan.solver.name()) } else { plan.solver.name().to_string() },
+            solver: if plan.polished { polished_name(plan.solver) } else { plan.solver.name().to_string() },
             iterations: o.iterations,
             outer_iterations: o.outer_iterations,
             evaluations: o.evaluations,
@@ -354,4 +354,11 @@ pub(crate) fn limit_text(negative: Option<f64>, positive: Option<f64>, symmetric
         (Some(n), Some(p)) if n != p => format!("−{n:.1}/+{p:.1}{unit}"),
         (n, p) => symmetric.or(n).or(p).map_or_else(|| "-".to_string(), |l| format!("{l:.1}{unit}")),
     }
+}
+
+/// A solver's name with the polish that finished its solve, e.g. "… + polish (newton → auglag-bfgs)": the
+/// polishers tried in turn, as many as needed.
+fn polished_name(solver: crate::plan::SolverKind) -> String {
+    let polishers: Vec<&str> = solver.polishers().iter().map(|p| p.id()).collect();
+    format!("{} + polish ({})", solver.name(), polishers.join(" → "))
 }
