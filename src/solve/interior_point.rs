@@ -35,7 +35,8 @@
 //!   dv = μ/s − v − Σ ds        (S V e = μ e linearised)
 //! ```
 //!
-//! `δ` (the inertia correction, relative to the diagonal) grows from 0 until the Cholesky succeeds. For its
+//! `δ` (the inertia correction, relative to `D`, the running maximum of `diag(JᵣᵀJᵣ)`) grows from 0 until
+//! the Cholesky succeeds. For its
 //! first 30 iterations `W` is Gauss–Newton's `JᵣᵀJᵣ`, after that the exact term joins it, recomputed every
 //! 3 iterations: far from a solution the exact Hessian's long steps along
 //! its weak directions are cut to nothing by the line search; near one its curvature gives the fast finish.

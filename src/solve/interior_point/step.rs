@@ -61,7 +61,11 @@ impl Ipm<'_> {
     }
 
     /// The matrix `JᵣᵀJᵣ + ρJĥᵀJĥ + JĝᵀΣJĝ` (+ the exact second-order term after [`GAUSS_NEWTON_FIRST`]
-    /// iterations) at `x`, and Moré's scaling from its diagonal.
+    /// iterations) at `x`, and Moré's scaling `D` from the diagonal of its first term `JᵣᵀJᵣ` only: a running
+    /// maximum that took in the barrier's `vᵢ/sᵢ` (up to 10⁸ and more near an active limit) or `ρ` kept
+    /// those past peaks for good, so that the smallest correction `δ = 10⁻⁸` became a damping larger than the
+    /// curvature and full steps crawled (`chin_up_earth` 1089 → 137 iterations, `moon_overhead_reach`
+    /// 761 → 62; docs/performance.md).
     fn assemble(&mut self) {
         let e = &self.eval;
         for i in 0..self.dims.n_ineq {
@@ -73,6 +77,10 @@ impl Ipm<'_> {
         }
         self.matrix.fill_zero();
         let mut assembled = e.jr.add_gram_to(None, &mut self.matrix);
+        // D_j = max over the iterations of (JᵣᵀJᵣ)_jj: the objective's own scale, not the barrier's Σ or ρ.
+        for (j, d) in self.scaling.iter_mut().enumerate() {
+            *d = d.max(self.matrix.diagonal(j));
+        }
         if self.rho == 0.0 {
             let largest = (0..self.dims.n).map(|j| self.matrix.diagonal(j)).fold(1.0, f64::max);
             self.rho = largest / EQUALITY_REGULARISATION;
@@ -84,9 +92,6 @@ impl Ipm<'_> {
             .and_then(|()| e.jg.add_gram_to(Some(&self.work_g), &mut self.matrix))
             .and_then(|()| e.jh.add_gram_to(Some(&self.work_h), &mut self.matrix));
         debug_assert!(assembled.is_ok(), "the band is sized from the patterns");
-        for (j, d) in self.scaling.iter_mut().enumerate() {
-            *d = d.max(self.matrix.diagonal(j));
-        }
         // The second-order term with the Lagrangian's weights r, y/s_h, v/s_g, recomputed every EXACT_REFRESH.
         if self.iterations >= GAUSS_NEWTON_FIRST && self.exact != Some(false) {
             for ((w, y), s) in self.work_h.iter_mut().zip(&self.y).zip(&self.scales.eq) {
