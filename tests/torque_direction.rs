@@ -54,9 +54,9 @@ fn a_negative_or_non_finite_directional_limit_is_refused() {
     }
 }
 
-/// Raising the double pendulum asks the shoulder for more than 70 N·m along `+axis` at N = 16. A 65 N·m
-/// limit on that direction binds (the peak comes down to it); the same limit on the other direction leaves
-/// the peak above it.
+/// Raising the double pendulum asks the shoulder for a peak torque along `+axis` (≈ 58–75 N·m at N = 16,
+/// by the basin the solver lands in). A limit 10 % below that peak on that direction binds (the peak comes
+/// down to it); the same limit on the other direction leaves the peak above it.
 #[test]
 fn the_plan_keeps_the_limit_of_each_direction() {
     let peak = |section: &str| {
@@ -69,9 +69,14 @@ fn the_plan_keeps_the_limit_of_each_direction() {
         (tau.clone().fold(f64::MIN, f64::max), tau.fold(f64::MAX, f64::min))
     };
     let (free_up, _) = peak("torque_limit = { shoulder = 200.0 }");
-    assert!(free_up > 70.0, "unlimited peak {free_up} N·m");
-    let (up, _) = peak("torque_limit = { shoulder = 200.0 }\ntorque_limit_positive = { shoulder = 65.0 }");
-    assert!(up <= 65.0 * 1.005 && up > 64.0, "+axis limited to 65 N·m: peak {up}");
-    let (other_up, other_down) = peak("torque_limit = { shoulder = 200.0 }\ntorque_limit_negative = { shoulder = 65.0 }");
-    assert!(other_up > 65.0 * 1.02 && other_down >= -65.0 * 1.005, "−axis limited: peak {other_up}, least {other_down}");
+    assert!(free_up > 50.0, "unlimited peak {free_up} N·m");
+    let limit = (0.9 * free_up).round();
+    let (up, _) = peak(&format!("torque_limit = {{ shoulder = 200.0 }}\ntorque_limit_positive = {{ shoulder = {limit} }}"));
+    assert!(up <= limit * 1.005 && up > limit - 1.0, "+axis limited to {limit} N·m: peak {up}");
+    let (other_up, other_down) =
+        peak(&format!("torque_limit = {{ shoulder = 200.0 }}\ntorque_limit_negative = {{ shoulder = {limit} }}"));
+    assert!(
+        other_up > limit * 1.02 && other_down >= -limit * 1.005,
+        "−axis limited to {limit}: peak {other_up}, least {other_down}"
+    );
 }

@@ -36,17 +36,17 @@ use crate::solve::Outcome;
 #[serde(rename_all = "kebab-case")]
 pub enum SolverKind {
     /// Augmented Lagrangian whose inner problems are solved by Levenberg–Marquardt on the banded
-    /// least-squares structure (default, fast); an inner solve that has taken 100 steps without converging
+    /// least-squares structure (fast; the default until 2026-12-06); an inner solve that has taken 100 steps without converging
     /// (Gauss–Newton crawling on large residuals) adds the exact second-order term to its model for the rest
     /// of the solve, and an unconverged result is polished by `newton`, then BFGS (docs/performance.md).
     Structured,
     /// The same trust region on the model Gauss–Newton + the exact second-order term of the Lagrangian
     /// (node-wise, banded): 2–7× fewer iterations, dearer ones (docs/performance.md).
     Newton,
-    /// A primal-dual interior-point method on the same banded system (barrier on slacks, IPOPT's filter line
-    /// search, the exact second-order term after 30 Gauss–Newton steps; `solve::interior_point`): reaches
-    /// IPOPT's optima or lower on the peer suite, in the fewest iterations; a stall is finished by
-    /// `structured` (docs/performance.md).
+    /// The default: a primal-dual interior-point method on the same banded system (barrier on slacks,
+    /// IPOPT's filter line search, the exact second-order term after 30 Gauss–Newton steps;
+    /// `solve::interior_point`): reaches IPOPT's optima or lower on the whole peer suite, in the fewest
+    /// iterations; a stall is finished by `structured` (docs/performance.md).
     InteriorPoint,
     /// The paper's method: augmented Lagrangian (eq. 10–11) around BFGS with a Wolfe line search.
     AuglagBfgs,

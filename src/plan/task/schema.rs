@@ -537,8 +537,8 @@ impl DiscretizationSection {
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SolverSection {
-    /// The solver (default "structured").
-    #[serde(default = "structured")]
+    /// The solver (default "interior-point").
+    #[serde(default = "interior_point")]
     pub method: SolverKind,
     /// Starting points solved in parallel, the best plan kept (`plan::multistart`): `"auto"` (default: two,
     /// and two more where they disagree) or a number.
@@ -556,14 +556,14 @@ fn default_seed() -> u64 {
     crate::plan::MultiStart::default().seed
 }
 
-fn structured() -> SolverKind {
-    SolverKind::Structured
+fn interior_point() -> SolverKind {
+    SolverKind::InteriorPoint
 }
 
 impl Default for SolverSection {
     fn default() -> Self {
         SolverSection {
-            method: SolverKind::Structured,
+            method: SolverKind::InteriorPoint,
             starts: crate::plan::Starts::Auto,
             seed: default_seed(),
             settings: SolverSettings::default(),
