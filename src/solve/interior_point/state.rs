@@ -67,6 +67,9 @@ pub(crate) struct Ipm<'a> {
     pub(super) delta: f64,
     /// Whether the problem provides the second-order term (asked at the first step).
     pub(super) exact: Option<bool>,
+    /// Steps on Gauss–Newton's model before the exact term joins it: [`super::step::GAUSS_NEWTON_FIRST`]
+    /// from a cold start, none from a warm one (already near a solution, where the curvature finishes).
+    pub(super) gauss_newton_first: usize,
     pub(super) iterations: usize,
     barrier_updates: usize,
     /// The exact second-order term as last computed.
@@ -128,6 +131,7 @@ impl<'a> Ipm<'a> {
             f_scale: 1.0,
             delta: 0.0,
             exact: None,
+            gauss_newton_first: if settings.warm_start.is_some() { 0 } else { super::step::GAUSS_NEWTON_FIRST },
             iterations: 0,
             barrier_updates: 0,
             term: None,

@@ -21,7 +21,7 @@ const EQUALITY_REGULARISATION: f64 = 1e-4;
 /// Iterations on the Gauss–Newton model `JᵣᵀJᵣ` before the exact second-order term joins it: far from a
 /// solution the exact Hessian's long steps along its weak directions are cut to nothing by the line search
 /// (the arm lifts, chin-ups, stoops stalled); near it the curvature gives the fast finish.
-const GAUSS_NEWTON_FIRST: usize = 30;
+pub(super) const GAUSS_NEWTON_FIRST: usize = 30;
 /// Iterations between recomputations of the exact term (kept in between, with the multipliers it was made
 /// with): every 3 halves the solve time at 13–37 DOF for about the same iterations (h36 wave-step 1.88 →
 /// 0.88 s, the moon reach 9.2 → 5.0 s); every 5 lost iterations on h21 (docs/performance.md).
@@ -93,7 +93,7 @@ impl Ipm<'_> {
             .and_then(|()| e.jh.add_gram_to(Some(&self.work_h), &mut self.matrix));
         debug_assert!(assembled.is_ok(), "the band is sized from the patterns");
         // The second-order term with the Lagrangian's weights r, y/s_h, v/s_g, recomputed every EXACT_REFRESH.
-        if self.iterations >= GAUSS_NEWTON_FIRST && self.exact != Some(false) {
+        if self.iterations >= self.gauss_newton_first && self.exact != Some(false) {
             for ((w, y), s) in self.work_h.iter_mut().zip(&self.y).zip(&self.scales.eq) {
                 *w = y / s;
             }
@@ -101,7 +101,7 @@ impl Ipm<'_> {
                 *w = v / s;
             }
             let term = self.term.get_or_insert_with(|| self.matrix.clone());
-            if (self.iterations - GAUSS_NEWTON_FIRST).is_multiple_of(EXACT_REFRESH) || self.exact.is_none() {
+            if (self.iterations - self.gauss_newton_first).is_multiple_of(EXACT_REFRESH) || self.exact.is_none() {
                 term.fill_zero();
                 let weights = [&self.eval.r[..], &self.work_h[..], &self.work_g[..]];
                 let provided = self.problem.add_second_order(&self.x, weights, term);
