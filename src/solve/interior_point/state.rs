@@ -58,6 +58,9 @@ pub(crate) struct Ipm<'a> {
     pub(super) c_h: Vec<f64>,
     pub(super) c_g: Vec<f64>,
     pub(super) saved: [Vec<f64>; 4],
+    /// Scratch of the equalities' refinement: a row vector and a correction of `dx`.
+    pub(super) refine_rows: Vec<f64>,
+    pub(super) refine_dx: Vec<f64>,
     /// The line search's filter of `(θ, φ)` pairs (reset with `μ`).
     pub(super) filter: super::filter::Filter,
     /// Barrier parameter `μ` and penalty `ρ` (units of `F`), the objective's scale, inertia correction `δ`.
@@ -125,6 +128,8 @@ impl<'a> Ipm<'a> {
             c_h: vec![0.0; p],
             c_g: vec![0.0; m],
             saved: [vec![0.0; n], vec![0.0; m], vec![0.0; p], vec![0.0; m]],
+            refine_rows: vec![0.0; p],
+            refine_dx: vec![0.0; n],
             filter: super::filter::Filter::default(),
             mu: 0.0,
             rho: 0.0,

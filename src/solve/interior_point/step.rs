@@ -26,6 +26,14 @@ pub(super) const GAUSS_NEWTON_FIRST: usize = 30;
 /// with): every 3 halves the solve time at 13–37 DOF for about the same iterations (h36 wave-step 1.88 →
 /// 0.88 s, the moon reach 9.2 → 5.0 s); every 5 lost iterations on h21 (docs/performance.md).
 const EXACT_REFRESH: usize = 3;
+/// Once the equalities hold (`max |ĥ| ≤ tol_violation`), passes of iterative refinement that take each
+/// direction from the system with `δ_c = 1/ρ` towards the one with `δ_c / REFINE_FACTOR`, reusing the factor:
+/// at a fixed `δ_c` the multipliers `y` converge only linearly (a proximal step), and the push-up's closed
+/// loop crawled at N = 31, 32 until the budget ran out. Three passes towards 10⁻⁴ `δ_c`: the push-up
+/// converges at every N from 12 to 32 (5041 → 3465 iterations over the 21); from the first iteration on
+/// instead, the push-up at N = 17 went 37 → 346 iterations (docs/performance.md).
+const REFINEMENTS: usize = 3;
+const REFINE_FACTOR: f64 = 1e4;
 
 impl Ipm<'_> {
     /// One accepted step (`Ok(true)`), or `Ok(false)` when no correction makes the line search succeed.
@@ -154,12 +162,43 @@ impl Ipm<'_> {
         for k in 0..self.dims.n_eq {
             self.dy[k] = self.rho * (self.dy[k] / self.scales.eq[k] + self.c_h[k]);
         }
+        if self.c_h.iter().all(|c| c.abs() <= self.tol_violation) {
+            self.refine_equalities();
+        }
+        let e = &self.eval;
         // ds = −(ĝ + s) − Jĝ dx,  dv = μ/s − v − (v/s) ds
         e.jg.mul_vec(&self.dx, &mut self.ds);
         for i in 0..self.dims.n_ineq {
             let (s, v) = (self.s[i], self.v[i]);
             self.ds[i] = -self.ds[i] / self.scales.ineq[i] - self.c_g[i];
             self.dv[i] = self.mu / s - v - v / s * self.ds[i];
+        }
+    }
+
+    /// [`REFINEMENTS`] passes of iterative refinement of `(dx, dy)` towards `δ_c' = δ_c / REFINE_FACTOR`
+    /// (`ρ' = REFINE_FACTOR·ρ`). The first block row holds already; the second's residual
+    /// `r = dy/ρ' − (Jĥ dx + ĥ)` is removed with the factor of `δ_c`: `M ddx = ρ Jĥᵀ r`, `ddy = ρ(Jĥ ddx − r)`.
+    fn refine_equalities(&mut self) {
+        let e = &self.eval;
+        let rho_target = self.rho * REFINE_FACTOR;
+        for _ in 0..REFINEMENTS {
+            // r (in work_h) and ρ r / s_h (in refine_rows, for Jhᵀ).
+            e.jh.mul_vec(&self.dx, &mut self.work_h);
+            for k in 0..self.dims.n_eq {
+                let r = self.dy[k] / rho_target - (self.work_h[k] / self.scales.eq[k] + self.c_h[k]);
+                self.work_h[k] = r;
+                self.refine_rows[k] = self.rho * r / self.scales.eq[k];
+            }
+            // M ddx = ρ Jĥᵀ r
+            self.refine_dx.iter_mut().for_each(|d| *d = 0.0);
+            e.jh.tr_mul_vec_add(1.0, &self.refine_rows, &mut self.refine_dx);
+            self.factor.solve_in_place(&mut self.refine_dx);
+            // ddy = ρ(Jĥ ddx − r);  dx += ddx
+            e.jh.mul_vec(&self.refine_dx, &mut self.refine_rows);
+            for k in 0..self.dims.n_eq {
+                self.dy[k] += self.rho * (self.refine_rows[k] / self.scales.eq[k] - self.work_h[k]);
+            }
+            self.dx.iter_mut().zip(&self.refine_dx).for_each(|(x, d)| *x += d);
         }
     }
 
