@@ -56,6 +56,7 @@
 
 mod filter;
 mod restoration;
+mod secant;
 mod state;
 mod step;
 

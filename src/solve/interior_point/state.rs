@@ -77,6 +77,8 @@ pub(crate) struct Ipm<'a> {
     barrier_updates: usize,
     /// The exact second-order term as last computed.
     pub(super) term: Option<SymmetricMatrix>,
+    /// Its secant approximation where the problem provides none ([`super::secant`]).
+    pub(super) secant: Option<Box<super::secant::Secant>>,
     pub(super) evaluations: usize,
     deadline: Option<Instant>,
     /// The settings' violation tolerance, and the relaxation `ε` of the inequalities ([`super::RELAX`]).
@@ -140,6 +142,7 @@ impl<'a> Ipm<'a> {
             iterations: 0,
             barrier_updates: 0,
             term: None,
+            secant: None,
             evaluations: 0,
             tol_violation: settings.tol_violation,
             relax: super::RELAX * settings.tol_violation,

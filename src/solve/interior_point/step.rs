@@ -100,24 +100,27 @@ impl Ipm<'_> {
             .and_then(|()| e.jg.add_gram_to(Some(&self.work_g), &mut self.matrix))
             .and_then(|()| e.jh.add_gram_to(Some(&self.work_h), &mut self.matrix));
         debug_assert!(assembled.is_ok(), "the band is sized from the patterns");
-        // The second-order term with the Lagrangian's weights r, y/s_h, v/s_g, recomputed every EXACT_REFRESH.
-        if self.iterations >= self.gauss_newton_first && self.exact != Some(false) {
-            for ((w, y), s) in self.work_h.iter_mut().zip(&self.y).zip(&self.scales.eq) {
-                *w = y / s;
-            }
-            for ((w, v), s) in self.work_g.iter_mut().zip(&self.v).zip(&self.scales.ineq) {
-                *w = v / s;
-            }
+        // The second-order term with the Lagrangian's weights r, y/s_h, v/s_g: the problem's, recomputed every
+        // EXACT_REFRESH, or the secant approximation where the problem provides none.
+        if self.iterations < self.gauss_newton_first {
+            return;
+        }
+        let due = (self.iterations - self.gauss_newton_first).is_multiple_of(EXACT_REFRESH) || self.exact.is_none();
+        if self.exact != Some(false) && due {
+            self.lagrangian_weights();
             let term = self.term.get_or_insert_with(|| self.matrix.clone());
-            if (self.iterations - self.gauss_newton_first).is_multiple_of(EXACT_REFRESH) || self.exact.is_none() {
-                term.fill_zero();
-                let weights = [&self.eval.r[..], &self.work_h[..], &self.work_g[..]];
-                let provided = self.problem.add_second_order(&self.x, weights, term);
-                self.exact = Some(provided);
+            term.fill_zero();
+            let weights = [&self.eval.r[..], &self.work_h[..], &self.work_g[..]];
+            let provided = self.problem.add_second_order(&self.x, weights, term);
+            self.exact = Some(provided);
+            if !provided {
+                self.start_secant();
             }
-            if self.exact == Some(true) {
-                self.matrix.add_matrix(self.term.as_ref().expect("set above"));
-            }
+        }
+        match (&self.term, &self.secant) {
+            (Some(term), _) if self.exact == Some(true) => self.matrix.add_matrix(term),
+            (_, Some(secant)) => secant.add_to(&mut self.matrix),
+            _ => {}
         }
     }
 
@@ -224,6 +227,7 @@ impl Ipm<'_> {
             *v += alpha_v * d;
         }
         self.safeguard_multipliers();
+        self.update_secant();
         Ok(())
     }
 }
