@@ -43,7 +43,15 @@ fn the_trace_adds_up_to_the_summary_and_is_written_only_when_asked() {
     let last: f64 = rows.last().unwrap()[objective].parse().unwrap();
     let reported = summary["objective"].as_f64().unwrap();
     assert!((last - reported).abs() <= 1e-12 * reported.abs(), "trace ends at {last}, summary says {reported}");
-    let models = ["interior-point-gauss-newton", "interior-point", "gauss-newton", "second-order", "secant", "bfgs"];
+    let models = [
+        "interior-point-gauss-newton",
+        "interior-point",
+        "interior-point-secant",
+        "gauss-newton",
+        "second-order",
+        "secant",
+        "bfgs",
+    ];
     assert!(rows.iter().all(|r| models.contains(&r[model].as_str())), "models: {models:?}");
     let times: Vec<f64> = rows.iter().map(|r| r[seconds].parse().unwrap()).collect();
     assert!(times.windows(2).all(|w| w[0] <= w[1]), "the clock runs forward");

@@ -60,7 +60,9 @@ impl SolverKind {
                 "structured (augmented Lagrangian + Levenberg–Marquardt, banded; second-order when it crawls)"
             }
             SolverKind::Newton => "newton (augmented Lagrangian + second-order trust region, banded)",
-            SolverKind::InteriorPoint => "interior-point (primal-dual barrier, filter line search, exact Hessian, banded)",
+            SolverKind::InteriorPoint => {
+                "interior-point (primal-dual barrier, filter line search, second-order model of the Lagrangian, banded)"
+            }
             SolverKind::AuglagBfgs => "auglag-bfgs (augmented Lagrangian + BFGS, the paper's method)",
         }
     }

@@ -298,7 +298,11 @@ impl<'a> Ipm<'a> {
             violation: a.violation,
             stationarity: a.stationarity.max(a.complementarity),
             penalty: self.rho / 2.0,
-            model: if self.exact == Some(true) { "interior-point" } else { "interior-point-gauss-newton" },
+            model: match (self.exact, &self.secant) {
+                (Some(true), _) => "interior-point",
+                (_, Some(_)) => "interior-point-secant",
+                _ => "interior-point-gauss-newton",
+            },
             damping: self.delta,
         };
         (self.observer)(&progress);
