@@ -26,14 +26,17 @@ pub(super) const GAUSS_NEWTON_FIRST: usize = 30;
 /// with): every 3 halves the solve time at 13–37 DOF for about the same iterations (h36 wave-step 1.88 →
 /// 0.88 s, the moon reach 9.2 → 5.0 s); every 5 lost iterations on h21 (docs/performance.md).
 const EXACT_REFRESH: usize = 3;
-/// Once the equalities hold (`max |ĥ| ≤ tol_violation`), passes of iterative refinement that take each
-/// direction from the system with `δ_c = 1/ρ` towards the one with `δ_c / REFINE_FACTOR`, reusing the factor:
-/// at a fixed `δ_c` the multipliers `y` converge only linearly (a proximal step), and the push-up's closed
-/// loop crawled at N = 31, 32 until the budget ran out. Three passes towards 10⁻⁴ `δ_c`: the push-up
-/// converges at every N from 12 to 32 (5041 → 3465 iterations over the 21); from the first iteration on
-/// instead, the push-up at N = 17 went 37 → 346 iterations (docs/performance.md).
-const REFINEMENTS: usize = 3;
+/// Once the equalities nearly hold (`max |ĥ| ≤ REFINE_NEAR·tol_violation`), passes of iterative refinement
+/// that take each direction from the system with `δ_c = 1/ρ` towards the one with `δ_c / REFINE_FACTOR`,
+/// reusing the factor: at a fixed `δ_c` the multipliers `y` converge only linearly (a proximal step), and the
+/// push-up's closed loop crawled at N = 31, 32 until the budget ran out. Four passes towards 10⁻⁴ `δ_c` from
+/// 100 tolerances: the push-up converges at every N from 12 to 32 (5041 → 2039 iterations over the 21); from
+/// the first iteration on instead, the push-up at N = 17 went 37 → 346 iterations; gated at 1 tolerance the
+/// twist lift's contact rows toggled it on and off (132 → 228 iterations); 2, 3 or 6 passes, or 10⁻⁵, left
+/// N = 31 or 32 unconverged (docs/performance.md).
+const REFINEMENTS: usize = 4;
 const REFINE_FACTOR: f64 = 1e4;
+const REFINE_NEAR: f64 = 100.0;
 
 impl Ipm<'_> {
     /// One accepted step (`Ok(true)`), or `Ok(false)` when no correction makes the line search succeed.
@@ -165,7 +168,7 @@ impl Ipm<'_> {
         for k in 0..self.dims.n_eq {
             self.dy[k] = self.rho * (self.dy[k] / self.scales.eq[k] + self.c_h[k]);
         }
-        if self.c_h.iter().all(|c| c.abs() <= self.tol_violation) {
+        if self.c_h.iter().all(|c| c.abs() <= REFINE_NEAR * self.tol_violation) {
             self.refine_equalities();
         }
         let e = &self.eval;
