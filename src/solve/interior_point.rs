@@ -36,10 +36,13 @@
 //! ```
 //!
 //! `δ` (the inertia correction, relative to `D`, the running maximum of `diag(JᵣᵀJᵣ)`) grows from 0 until
-//! the Cholesky succeeds. For its
-//! first 30 iterations `W` is Gauss–Newton's `JᵣᵀJᵣ`, after that the exact term joins it, recomputed every
-//! 3 iterations: far from a solution the exact Hessian's long steps along
-//! its weak directions are cut to nothing by the line search; near one its curvature gives the fast finish.
+//! the Cholesky succeeds. For the first 30 iterations of a cold start `W` is Gauss–Newton's `JᵣᵀJᵣ`, after
+//! that (and at once from a warm start) the exact term joins it, recomputed every 3 iterations: far from a
+//! solution the exact Hessian's long steps along its weak directions are cut to nothing by the line search;
+//! near one its curvature gives the fast finish. A problem that provides no term gets a secant
+//! approximation of the constraints' part ([`secant`]). Once the equalities nearly hold, iterative
+//! refinement takes each direction towards a hundredth of a percent of `δ_c`, so that their multipliers do
+//! not crawl (`step.rs`).
 //! The barrier sees the rows relaxed, `ĝ ≤ ε` (IPOPT's `bound_relax_factor`, `ε = 0.01 tol_violation`), so
 //! that a row held on its bound by fixed unknowns keeps an interior.
 //!
