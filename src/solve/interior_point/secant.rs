@@ -31,16 +31,6 @@ impl Secant {
 }
 
 impl Ipm<'_> {
-    /// `work_h = y/s_h`, `work_g = v/s_g`: the weights of `∇ĥ`, `∇ĝ` in the Lagrangian's gradient.
-    pub(super) fn lagrangian_weights(&mut self) {
-        for ((w, y), s) in self.work_h.iter_mut().zip(&self.y).zip(&self.scales.eq) {
-            *w = y / s;
-        }
-        for ((w, v), s) in self.work_g.iter_mut().zip(&self.v).zip(&self.scales.ineq) {
-            *w = v / s;
-        }
-    }
-
     /// Starts the secant approximation at `x` (the problem has just said it provides no term).
     pub(super) fn start_secant(&mut self) {
         self.lagrangian_weights();

@@ -201,13 +201,19 @@ impl<'a> Ipm<'a> {
 
     /// The documented convergence test at `x` with `λ = v/s_g`, `μ_eq = y/s_h` (leaves `∇ₓℓ` in `gradient`).
     pub(super) fn assess(&mut self, settings: &Settings) -> Assessment {
-        for ((w, v), s) in self.work_g.iter_mut().zip(&self.v).zip(&self.scales.ineq) {
-            *w = v / s;
-        }
+        self.lagrangian_weights();
+        assess_at(&self.eval, &self.scales, [&self.work_g, &self.work_h], &mut self.gradient, settings)
+    }
+
+    /// `work_h = y/s_h`, `work_g = v/s_g`: the weights of `∇ĥ`, `∇ĝ` in the Lagrangian's gradient (the
+    /// multipliers in problem units).
+    pub(super) fn lagrangian_weights(&mut self) {
         for ((w, y), s) in self.work_h.iter_mut().zip(&self.y).zip(&self.scales.eq) {
             *w = y / s;
         }
-        assess_at(&self.eval, &self.scales, [&self.work_g, &self.work_h], &mut self.gradient, settings)
+        for ((w, v), s) in self.work_g.iter_mut().zip(&self.v).zip(&self.scales.ineq) {
+            *w = v / s;
+        }
     }
 
     pub(super) fn violation(&self) -> (f64, Option<(ConstraintKind, usize)>) {
