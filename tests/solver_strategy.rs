@@ -3,7 +3,7 @@
 //! push-up at every discretisation.
 
 use mintorque::plan::{self, task::Task, InitialGuess, MultiStart, SolverKind};
-use mintorque::solve::Settings;
+use mintorque::solve::{Settings, StopReason};
 use std::path::Path;
 
 fn task(example: &str) -> Task {
@@ -119,6 +119,8 @@ fn one_iteration_budget_for_every_phase() {
             "{solver:?}: {} iterations with a budget of {budget}",
             planned.outcome.iterations
         );
+        // The budget stopped the solve, and the reason says so (not the first phase's "stalled").
+        assert_eq!(planned.outcome.reason, StopReason::MaxIterations, "{solver:?}");
         let timed = Settings { time_limit: Some(0.05), ..t.settings.clone() };
         let started = std::time::Instant::now();
         let planned = plan::plan(&t.spec, solver, &timed, &mut |_| {}).unwrap();
@@ -126,6 +128,7 @@ fn one_iteration_budget_for_every_phase() {
         // The limit is checked between iterations: one iteration of slack, far below a second phase.
         let seconds = started.elapsed().as_secs_f64();
         assert!(seconds < 0.05 + 0.5, "{solver:?}: {seconds:.3} s with a limit of 0.05 s");
+        assert_eq!(planned.outcome.reason, StopReason::TimeLimit, "{solver:?}");
     }
 }
 

@@ -132,6 +132,8 @@ pub(super) fn run_start(
     let mut polished = false;
     // Every phase spends from the one budget, kept or not: `spent` counts them all.
     let mut spent = Spent::of(&outcome);
+    // A polish the budget stopped: the start ends for that reason, whichever phase's point is kept.
+    let mut budget_spent = None;
     for &polisher in polishers {
         let left = settings.max_iterations.saturating_sub(spent.iterations);
         if !worth_polishing(&outcome, settings) || left == 0 || remaining(deadline).is_some_and(|t| t <= 0.0) {
@@ -146,12 +148,16 @@ pub(super) fn run_start(
         };
         let polish = solve_once(polisher, &mut problem, &outcome.x, &polish_settings, observer);
         spent.add(&polish);
+        budget_spent = matches!(polish.reason, StopReason::MaxIterations | StopReason::TimeLimit).then(|| polish.reason.clone());
         if polish.converged || polish.worst_violation <= outcome.worst_violation && polish.objective <= outcome.objective {
             polished = true;
             outcome = polish;
         }
     }
     spent.charge(&mut outcome);
+    if let (false, Some(reason)) = (outcome.converged, budget_spent) {
+        outcome.reason = reason;
+    }
     stuck_in_units(&mut outcome, &problem);
     Ok(Run { outcome, polished, seconds: started.elapsed().as_secs_f64() })
 }

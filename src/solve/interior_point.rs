@@ -1,17 +1,17 @@
-//! A primal-dual interior-point method on the banded problem (`--solver interior-point`; not yet the
-//! default): every iteration one Newton step on the perturbed KKT conditions, the multipliers moving every
-//! iteration (no outer loop of inner solves to re-converge), the inequalities through slacks and a
-//! logarithmic barrier, the equalities with IPOPT's regularisation `δ_c = 1/ρ`. The reduced Newton matrix
-//! stays symmetric and banded, so the structured solver's Gram assembly, exact node-wise second-order term and
-//! banded Cholesky serve it unchanged.
+//! A primal-dual interior-point method on the banded problem (`--solver interior-point`, the default):
+//! every iteration one Newton step on the perturbed KKT conditions, the multipliers moving every iteration
+//! (no outer loop of inner solves to re-converge), the inequalities through slacks and a logarithmic barrier,
+//! the equalities with IPOPT's regularisation `δ_c = 1/ρ`. The reduced Newton matrix stays symmetric and
+//! banded, so the structured solver's Gram assembly, exact node-wise second-order term and banded Cholesky
+//! serve it unchanged.
 //!
-//! **Status** (docs/performance.md, "A primal-dual interior-point solver"): with the automatic starts it
-//! converges on all 35 tasks of the benchmark and reaches F ≤ 1.001 × IPOPT's on every peer task (the
-//! structured solver: 1.030 and 1.033 on two); one start converges on 31 of 35 by itself, most in far fewer
-//! steps (the 37-DOF handrail 31 against 404; the 36-DOF wave-step in 0.91 s), and the other 4 stall in the end
-//! game (the equalities' multipliers converge linearly at a fixed `δ_c`) and are finished by the structured
-//! solver from where they stopped (`plan/run.rs`). The push-up's closed loop converges at 19 of the 21 N from
-//! 12 to 32.
+//! **Status** (docs/performance.md, "The interior point as the default"): with the automatic starts it
+//! converges on all 35 tasks of the benchmark (27 examples, 8 peer tasks) and reaches F ≤ 1.001 × IPOPT's
+//! on every peer task. From one start it converges by itself on 30 of the 31 tasks that use it (4 examples
+//! choose another solver in their task files); the weight lift in space stalls at its first barrier value
+//! (its palms' collision rows are kinked where the capsules turn parallel) and the structured solver
+//! finishes it from where it stopped (`plan/run.rs`). The push-up's closed loop converges at every N from 12
+//! to 32.
 //!
 //! # The barrier subproblem
 //!

@@ -167,13 +167,16 @@ impl Transcription<'_> {
                         }
                         _ => unreachable!(),
                     };
-                    let coef: Vec<f64> = info.directions.iter().map(|e| a.dot(e)).collect();
+                    // c_m = a·e_m over the contact's (at most 3) force directions: no heap in the node loop.
+                    let mut coef = [0.0; 3];
+                    let coef = &mut coef[..info.directions.len()];
+                    coef.iter_mut().zip(&info.directions).for_each(|(c, e)| *c = a.dot(e));
                     out.g[gi] = coef.iter().enumerate().map(|(m, c)| c * w.lambda[info.offset + m]).sum();
                     if want_jac {
                         let vals = out.jg.row_values_mut(gi);
                         let mut pos = 0;
                         for a in 0..4 {
-                            for c in &coef {
+                            for c in coef.iter() {
                                 vals[pos] = c * basis.b[a] * self.layout.lambda_scale;
                                 pos += 1;
                             }

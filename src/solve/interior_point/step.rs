@@ -117,6 +117,8 @@ impl Ipm<'_> {
             let provided = self.problem.add_second_order(&self.x, weights, term);
             self.exact = Some(provided);
             if !provided {
+                // Never asked again: the band's memory goes back, the secant takes its place.
+                self.term = None;
                 self.start_secant();
             }
         }
