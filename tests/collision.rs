@@ -554,3 +554,49 @@ fn a_thin_plate_becomes_a_bounded_number_of_capsules_without_gaps() {
     let model = mintorque::model::urdf::parse(&urdf, "arm.urdf").unwrap();
     assert_eq!(model.collision_capsules(1).len(), 16);
 }
+
+/// The collision rows of every node of `example` at its initial guess: `(node, constraint index, value)`.
+fn collision_rows_at_guess(example: &str) -> (Task, Vec<(usize, f64)>) {
+    let task = Task::load(&repo().join(format!("examples/{example}.toml"))).unwrap();
+    let mut problem = Transcription::new(&task.spec).unwrap();
+    let x = mintorque::plan::initial_x(&task.spec, &mut problem).unwrap();
+    let dims = problem.dims();
+    let mut eval = Evaluation::new(dims, &problem.jacobian_patterns()).unwrap();
+    problem.evaluate(&x, false, &mut eval).unwrap();
+    let rows = (0..dims.n_ineq)
+        .filter_map(|i| match problem.decode_ineq(i) {
+            (k, mintorque::plan::transcription::IneqRow::Collision(_)) => Some((k, eval.g[i])),
+            _ => None,
+        })
+        .collect();
+    (task, rows)
+}
+
+/// A planar figure's mirror pairs (left palm against left thigh, right against right) are one function of
+/// the posture: one row, not two. No two collision rows of a node of the weight lift in space agree (before,
+/// 31 of its 70 pairs were copies); the 3D squat-lift's left and right pairs differ, and every one is kept.
+#[test]
+fn copies_of_a_collision_pair_are_one_row() {
+    let (_, rows) = collision_rows_at_guess("weight_lift_space");
+    for (a, (ka, ga)) in rows.iter().enumerate() {
+        for (kb, gb) in &rows[a + 1..] {
+            assert!(ka != kb || (ga - gb).abs() > 1e-12, "node {ka}: two collision rows at {ga}");
+        }
+    }
+    let (task, rows) = collision_rows_at_guess("lift_squat_3d");
+    let model = &task.spec.model;
+    let pairs: usize = task
+        .spec
+        .collisions
+        .iter()
+        .map(|c| {
+            model.collision_capsules(c.body).len()
+                * match c.other {
+                    Collider::Body(b) => model.collision_capsules(b).len(),
+                    Collider::Obstacle(_) => 1,
+                }
+        })
+        .sum();
+    let nodes = rows.iter().map(|r| r.0).max().unwrap() + 1;
+    assert_eq!(rows.len(), pairs * nodes, "every 3D pair kept");
+}

@@ -10,6 +10,10 @@ use crate::geometry::{capsule_capsule, capsule_obstacle, Capsule, Separation};
 use crate::plan::spec::{Collider, Spec};
 use crate::spatial::Vec3;
 
+/// Postures at which two pairs' distances are compared to find copies, and how close (m) they must agree.
+const COPY_SAMPLES: usize = 3;
+const COPY_TOLERANCE: f64 = 1e-12;
+
 /// The other side of a capsule pair.
 #[derive(Clone, Debug)]
 enum Other {
@@ -61,7 +65,49 @@ impl Collisions {
             }
         }
         let nv = model.nv();
-        Collisions { pairs, jac_a: vec![Vec3::zeros(); nv], jac_b: vec![Vec3::zeros(); nv] }
+        let mut collisions = Collisions { pairs, jac_a: vec![Vec3::zeros(); nv], jac_b: vec![Vec3::zeros(); nv] };
+        collisions.drop_copies(spec);
+        collisions
+    }
+
+    /// Drops every pair that is a copy of an earlier one: the same constraint, the same joints moving
+    /// either side, and the same distance at [`COPY_SAMPLES`] scattered postures — a planar figure's left
+    /// and right palms against its left and right thighs are two such pairs, one row's work done twice
+    /// (the weight lift in space had 70 pairs where 39 differ).
+    fn drop_copies(&mut self, spec: &Spec) {
+        let model = &spec.model;
+        let mut data = Data::new(model);
+        let mut signatures = vec![[0.0; COPY_SAMPLES]; self.pairs.len()];
+        for k in 0..COPY_SAMPLES {
+            // q_i = 1.5 sin(7.3 i + 2.1 k + 0.4) rad: away from symmetric postures, no random source needed
+            let q: Vec<f64> = (0..model.nv()).map(|i| 1.5 * (7.3 * i as f64 + 2.1 * k as f64 + 0.4).sin()).collect();
+            kinematics::placements(model, &mut data, &q);
+            for (p, signature) in signatures.iter_mut().enumerate() {
+                signature[k] = self.separation(spec, &data, p).distance;
+            }
+        }
+        let same = |a: &CapsulePair, b: &CapsulePair| {
+            let other_path = |p: &CapsulePair| match &p.other {
+                Other::Capsule { path, .. } => Some(path.clone()),
+                Other::Obstacle(_) => None,
+            };
+            a.constraint == b.constraint && a.path == b.path && other_path(a) == other_path(b)
+        };
+        let mut kept: Vec<usize> = Vec::new();
+        for p in 0..self.pairs.len() {
+            let copy = kept.iter().any(|&k| {
+                same(&self.pairs[k], &self.pairs[p])
+                    && signatures[k].iter().zip(&signatures[p]).all(|(a, b)| (a - b).abs() <= COPY_TOLERANCE)
+            });
+            if !copy {
+                kept.push(p);
+            }
+        }
+        let mut index = 0;
+        self.pairs.retain(|_| {
+            index += 1;
+            kept.contains(&(index - 1))
+        });
     }
 
     /// The separation of pair `p` at the placements in `data`.
