@@ -16,10 +16,15 @@
 //! basin the first two agree and the solve costs what two starts cost; where they disagree there are
 //! other basins, and the next two look for a lower one. The rounds are fixed in size, whatever the
 //! number of threads, so the plan is too.
+//!
+//! A round first runs every start's solver; a start (not the first) that stalled at more than
+//! [`HOPELESS`] times the least effort a converged start has reached is then left unpolished — its polish
+//! (the structured solver from where it stopped) costs hundreds of iterations to land, at best, in a basin
+//! already found — and counts as not converged; the others are polished where they stalled.
 
 mod perturb;
 
-use super::run::Run;
+use super::run::{Run, Started};
 use super::{Spec, Transcription};
 use crate::error::{Error, Result};
 use crate::solve::{Outcome, Progress};
@@ -200,23 +205,50 @@ pub(super) fn guesses(spec: &Spec, problem: &mut Transcription, x0: &[f64], mult
     Ok(all)
 }
 
-/// Runs `solve` from the guesses round by round, `multi.starts` at a time, until the rounds end
-/// ([`MultiStart::up_to`], [`agreed`]) or the guesses do. The first of all runs on this thread with
-/// `observer`.
-pub(super) fn run_rounds<F>(
+/// A start other than the first whose first phase stalled at more than this multiple of the least effort
+/// a converged start has reached (in its round or before) is not polished: the push-up's second start
+/// stalled at 4.3× the first's 1531.9 and its polish took 516 more iterations to land 0.003 % below it.
+pub const HOPELESS: f64 = 2.0;
+
+/// Runs the starts from the guesses round by round, `multi.starts` at a time, until the rounds end
+/// ([`MultiStart::up_to`], [`agreed`]) or the guesses do. A round runs every start's first phase (`first`)
+/// in parallel, then decides which stalled ones to polish ([`HOPELESS`]; `stalled` says whether one stalled)
+/// and finishes them all (`finish`) in parallel — the decision waits for the whole round, so the plan is the
+/// same on any number of threads. The first start runs on this thread with `observer`.
+pub(super) fn run_rounds<'s, F, P, W>(
     guesses: &[Vec<f64>],
     multi: &MultiStart,
     observer: &mut dyn FnMut(&Progress),
-    solve: F,
+    first: F,
+    finish: P,
+    stalled: W,
 ) -> Result<Vec<Run>>
 where
-    F: Fn(&[f64], &mut dyn FnMut(&Progress)) -> Result<Run> + Sync,
+    F: Fn(&[f64], &mut dyn FnMut(&Progress)) -> Result<Started<'s>> + Sync,
+    P: Fn(Started<'s>, bool, &mut dyn FnMut(&Progress)) -> Run + Sync,
+    W: Fn(&Started<'s>) -> bool,
 {
     let round = multi.starts.max(1);
-    let mut runs = run_all(&guesses[..round.min(guesses.len())], observer, &solve)?;
-    while runs.len() < guesses.len() && !agreed(&runs) {
-        let next = &guesses[runs.len()..(runs.len() + round).min(guesses.len())];
-        runs.extend(run_all(next, &mut |_| {}, &solve)?);
+    let mut runs: Vec<Run> = Vec::new();
+    let mut quiet = |_: &Progress| {};
+    while runs.len() < guesses.len() && (runs.is_empty() || !agreed(&runs)) {
+        let next: Vec<&[f64]> = guesses[runs.len()..(runs.len() + round).min(guesses.len())].iter().map(|g| &g[..]).collect();
+        let observer: &mut dyn FnMut(&Progress) = if runs.is_empty() { &mut *observer } else { &mut quiet };
+        let firsts = on_pool(next, &mut *observer, |x, o| first(x, o)).into_iter().collect::<Result<Vec<_>>>()?;
+        let least = runs
+            .iter()
+            .map(|r| &r.outcome)
+            .chain(firsts.iter().map(|f| &f.outcome))
+            .filter(|o| o.converged && o.objective.is_finite())
+            .map(|o| o.objective)
+            .min_by(f64::total_cmp);
+        let offset = runs.len();
+        let polish: Vec<bool> = firsts
+            .iter()
+            .enumerate()
+            .map(|(i, f)| offset + i == 0 || !stalled(f) || !least.is_some_and(|l| f.outcome.objective > HOPELESS * l))
+            .collect();
+        runs.extend(on_pool(firsts.into_iter().zip(polish).collect(), observer, |(f, p), o| finish(f, p, o)));
     }
     Ok(runs)
 }
@@ -228,23 +260,24 @@ pub(super) fn agreed(runs: &[Run]) -> bool {
     efforts().filter(|&f| f <= least + AGREE * least.abs()).count() >= 2
 }
 
-/// Runs `solve` from every guess: the first on this thread with `observer`, the others in parallel on the
-/// rayon pool with no observer.
-fn run_all<F>(guesses: &[Vec<f64>], observer: &mut dyn FnMut(&Progress), solve: &F) -> Result<Vec<Run>>
-where
-    F: Fn(&[f64], &mut dyn FnMut(&Progress)) -> Result<Run> + Sync,
-{
-    let (first, rest) = guesses.split_first().expect("at least one guess");
+/// `f` of every item: the first on this thread with `observer`, the others in parallel on the rayon pool
+/// with none; in order.
+fn on_pool<T: Send, U: Send>(
+    items: Vec<T>,
+    observer: &mut dyn FnMut(&Progress),
+    f: impl Fn(T, &mut dyn FnMut(&Progress)) -> U + Sync,
+) -> Vec<U> {
+    let mut items = items.into_iter();
+    let first = items.next().expect("at least one start");
+    let rest: Vec<T> = items.collect();
     std::thread::scope(|scope| {
         let others =
-            (!rest.is_empty()).then(|| scope.spawn(|| rest.par_iter().map(|x| solve(x, &mut |_| {})).collect::<Vec<_>>()));
-        let mut runs = vec![solve(first, observer)?];
+            (!rest.is_empty()).then(|| scope.spawn(|| rest.into_par_iter().map(|t| f(t, &mut |_| {})).collect::<Vec<_>>()));
+        let mut out = vec![f(first, observer)];
         if let Some(handle) = others {
-            for run in handle.join().expect("a start panicked") {
-                runs.push(run?);
-            }
+            out.extend(handle.join().expect("a start panicked"));
         }
-        Ok(runs)
+        out
     })
 }
 

@@ -35,9 +35,14 @@ pub fn plan_with_starts(
     let initial_objective = objective_at(&mut problem, &x0).map_err(|e| Error::task(&spec.origin, "initial guess", e))?;
     let guesses = multistart::guesses(spec, &mut problem, &x0, multi)?;
     let deadline = settings.time_limit.map(|t| started + Duration::from_secs_f64(t));
-    let runs = multistart::run_rounds(&guesses, multi, observer, |x, observer| {
-        run_start(spec, solver, settings, deadline, x, observer)
-    })?;
+    let runs = multistart::run_rounds(
+        &guesses,
+        multi,
+        observer,
+        |x, observer| first_phase(spec, solver, settings, deadline, x, observer),
+        |first, polish, observer| finish_start(first, solver, settings, deadline, polish, observer),
+        |first| first.stalled(settings),
+    )?;
     let best = multistart::best(&runs);
     let starts = runs.iter().enumerate().map(|(k, r)| StartReport::new(k, multi, &r.outcome, r.polished, r.seconds)).collect();
     let run = runs.into_iter().nth(best).expect("at least one start");
@@ -116,10 +121,52 @@ pub(super) fn run_start(
     x0: &[f64],
     observer: &mut dyn FnMut(&Progress),
 ) -> Result<Run> {
+    let first = first_phase(spec, solver, settings, deadline, x0, observer)?;
+    Ok(finish_start(first, solver, settings, deadline, true, observer))
+}
+
+/// A start's first phase, its problem kept for a polish.
+pub(super) struct Started<'s> {
+    problem: Transcription<'s>,
+    /// The first phase's result.
+    pub outcome: Outcome,
+    started: Instant,
+}
+
+impl Started<'_> {
+    /// Whether the first phase stalled where a polish can finish it ([`worth_polishing`]).
+    pub fn stalled(&self, settings: &Settings) -> bool {
+        worth_polishing(&self.outcome, settings)
+    }
+}
+
+/// The first phase of a start: `solver` from `x0`, within the budget of `settings` and `deadline`.
+pub(super) fn first_phase<'s>(
+    spec: &'s Spec,
+    solver: SolverKind,
+    settings: &Settings,
+    deadline: Option<Instant>,
+    x0: &[f64],
+    observer: &mut dyn FnMut(&Progress),
+) -> Result<Started<'s>> {
     let started = Instant::now();
     let mut problem = Transcription::new(spec)?;
     let first = Settings { time_limit: remaining(deadline), ..settings.clone() };
-    let mut outcome = solve_once(solver, &mut problem, x0, &first, observer);
+    let outcome = solve_once(solver, &mut problem, x0, &first, observer);
+    Ok(Started { problem, outcome, started })
+}
+
+/// The rest of a start: where its first phase stalled, the polishes (unless `polish` is false), with what is
+/// left of the one budget.
+pub(super) fn finish_start(
+    first: Started,
+    solver: SolverKind,
+    settings: &Settings,
+    deadline: Option<Instant>,
+    polish: bool,
+    observer: &mut dyn FnMut(&Progress),
+) -> Run {
+    let Started { mut problem, mut outcome, started } = first;
     // Gauss–Newton ignores the curvature of the residuals (large at a minimum-torque optimum, and with
     // contact forces λ·∂²Φ), so Levenberg–Marquardt can crawl or stall just short of the stationarity test.
     // A polish from where it stopped, warm-started with its multipliers, supplies that curvature — with
@@ -127,7 +174,7 @@ pub(super) fn run_start(
     // paper's BFGS if that did not converge either. Where the interior point stalls (its equalities'
     // multipliers converging only linearly, or a stall short of the optimum), the structured solver finishes
     // from its point — with fresh multipliers: the barrier's are no augmented Lagrangian's.
-    let polishers = solver.polishers();
+    let polishers = if polish { solver.polishers() } else { &[] };
     let from_interior_point = solver == SolverKind::InteriorPoint;
     let mut polished = false;
     // Every phase spends from the one budget, kept or not: `spent` counts them all.
@@ -159,7 +206,7 @@ pub(super) fn run_start(
         outcome.reason = reason;
     }
     stuck_in_units(&mut outcome, &problem);
-    Ok(Run { outcome, polished, seconds: started.elapsed().as_secs_f64() })
+    Run { outcome, polished, seconds: started.elapsed().as_secs_f64() }
 }
 
 /// Whether a phase's result is one a polish can finish: it stalled, crawled or ran out of iterations
