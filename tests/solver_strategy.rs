@@ -64,6 +64,7 @@ fn a_start_stalled_far_above_a_converged_one_is_not_polished() {
     assert!(!hopeless.is_empty(), "a start stalls: {:?}", planned.starts);
     for s in hopeless {
         assert!(!s.polished && s.objective > mintorque::plan::HOPELESS * best, "{s:?}");
+        assert!(s.polish_skipped.as_deref().is_some_and(|why| why.contains("left unpolished")), "{s:?}");
     }
     assert!(planned.converged() && planned.outcome.objective <= best);
     assert!(planned.outcome.iterations <= 100, "{} iterations", planned.outcome.iterations);

@@ -149,5 +149,10 @@ fn sum(first: Run, second: Run) -> Run {
         outer_iterations: a.outer_iterations + b.outer_iterations,
         ..b
     };
-    Run { outcome, polished: first.polished || second.polished, seconds: first.seconds + second.seconds }
+    Run {
+        outcome,
+        polished: first.polished || second.polished,
+        seconds: first.seconds + second.seconds,
+        polish_skipped: first.polish_skipped,
+    }
 }

@@ -27,7 +27,7 @@ mod perturb;
 use super::run::{Run, Started};
 use super::{Spec, Transcription};
 use crate::error::{Error, Result};
-use crate::solve::{Outcome, Progress};
+use crate::solve::Progress;
 use rayon::prelude::*;
 
 /// Two converged starts whose efforts differ by less than this fraction of the least have found the same
@@ -160,12 +160,17 @@ pub struct StartReport {
     pub iterations: usize,
     /// Whether a polish ([`SolverKind::polishers`](super::SolverKind::polishers)) finished it.
     pub polished: bool,
+    /// Why it stalled unpolished, if it did: its effort against the least a converged start reached
+    /// ([`HOPELESS`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub polish_skipped: Option<String>,
     /// Wall-clock time of its solve (s).
     pub solve_seconds: f64,
 }
 
 impl StartReport {
-    pub(super) fn new(index: usize, multi: &MultiStart, outcome: &Outcome, polished: bool, seconds: f64) -> Self {
+    pub(super) fn new(index: usize, multi: &MultiStart, run: &Run) -> Self {
+        let (outcome, polished, seconds) = (&run.outcome, run.polished, run.seconds);
         StartReport {
             index,
             seed: (index > 0).then(|| start_seed(multi.seed, index)),
@@ -174,6 +179,7 @@ impl StartReport {
             reason: outcome.reason.to_string(),
             iterations: outcome.iterations,
             polished,
+            polish_skipped: run.polish_skipped.clone(),
             solve_seconds: seconds,
         }
     }
@@ -243,12 +249,23 @@ where
             .map(|o| o.objective)
             .min_by(f64::total_cmp);
         let offset = runs.len();
-        let polish: Vec<bool> = firsts
+        // Why start `offset + i` is not polished, if it is not.
+        let skip: Vec<Option<String>> = firsts
             .iter()
             .enumerate()
-            .map(|(i, f)| offset + i == 0 || !stalled(f) || !least.is_some_and(|l| f.outcome.objective > HOPELESS * l))
+            .map(|(i, f)| match least {
+                Some(l) if offset + i > 0 && stalled(f) && f.outcome.objective > HOPELESS * l => Some(format!(
+                    "at {:.2}× the least effort a converged start reached ({l:.6e}): left unpolished",
+                    f.outcome.objective / l
+                )),
+                _ => None,
+            })
             .collect();
-        runs.extend(on_pool(firsts.into_iter().zip(polish).collect(), observer, |(f, p), o| finish(f, p, o)));
+        runs.extend(on_pool(firsts.into_iter().zip(skip).collect(), observer, |(f, skip), o| {
+            let mut run = finish(f, skip.is_none(), o);
+            run.polish_skipped = skip;
+            run
+        }));
     }
     Ok(runs)
 }

@@ -44,7 +44,7 @@ pub fn plan_with_starts(
         |first| first.stalled(settings),
     )?;
     let best = multistart::best(&runs);
-    let starts = runs.iter().enumerate().map(|(k, r)| StartReport::new(k, multi, &r.outcome, r.polished, r.seconds)).collect();
+    let starts = runs.iter().enumerate().map(|(k, r)| StartReport::new(k, multi, r)).collect();
     let run = runs.into_iter().nth(best).expect("at least one start");
     let enforced = super::enforce::enforce(spec, solver, settings, deadline, run, &guesses[best], observer)?;
     let mut run = enforced.run;
@@ -109,6 +109,8 @@ pub(super) struct Run {
     pub outcome: Outcome,
     pub polished: bool,
     pub seconds: f64,
+    /// Why a stalled start was left unpolished ([`multistart::HOPELESS`]), for summary.json.
+    pub polish_skipped: Option<String>,
 }
 
 /// Solves from `x0` with `solver`, then polishes if it stalled, within the budget of `settings` and the
@@ -206,7 +208,7 @@ pub(super) fn finish_start(
         outcome.reason = reason;
     }
     stuck_in_units(&mut outcome, &problem);
-    Run { outcome, polished, seconds: started.elapsed().as_secs_f64() }
+    Run { outcome, polished, seconds: started.elapsed().as_secs_f64(), polish_skipped: None }
 }
 
 /// Whether a phase's result is one a polish can finish: it stalled, crawled or ran out of iterations

@@ -294,7 +294,11 @@ pub fn text_table(s: &Summary) -> String {
             .starts
             .iter()
             .map(|r| {
-                let how = if r.converged { format!("{:.6e}", r.objective) } else { format!("not converged ({})", r.reason) };
+                let how = match (&r.polish_skipped, r.converged) {
+                    (_, true) => format!("{:.6e}", r.objective),
+                    (Some(why), false) => format!("not converged ({}; {why})", r.reason),
+                    (None, false) => format!("not converged ({})", r.reason),
+                };
                 format!("#{} {how} in {} iterations, {:.3} s", r.index, r.iterations, r.solve_seconds)
             })
             .collect();
