@@ -34,6 +34,18 @@ pub(crate) struct CapsulePair {
     other: Other,
 }
 
+impl CapsulePair {
+    /// The same constraint, and the same joints moving either side.
+    fn same_solids(&self, other: &CapsulePair) -> bool {
+        let other_side = match (&self.other, &other.other) {
+            (Other::Capsule { path: a, .. }, Other::Capsule { path: b, .. }) => a == b,
+            (Other::Obstacle(_), Other::Obstacle(_)) => true,
+            _ => false,
+        };
+        self.constraint == other.constraint && self.path == other.path && other_side
+    }
+}
+
 /// Every capsule pair of a spec and the scratch of their gradients, allocated once.
 #[derive(Clone, Debug)]
 pub(crate) struct Collisions {
@@ -86,28 +98,17 @@ impl Collisions {
                 signature[k] = self.separation(spec, &data, p).distance;
             }
         }
-        let same = |a: &CapsulePair, b: &CapsulePair| {
-            let other_path = |p: &CapsulePair| match &p.other {
-                Other::Capsule { path, .. } => Some(path.clone()),
-                Other::Obstacle(_) => None,
-            };
-            a.constraint == b.constraint && a.path == b.path && other_path(a) == other_path(b)
-        };
-        let mut kept: Vec<usize> = Vec::new();
+        // Pair `p` is a copy if an earlier pair that is kept agrees with it in everything.
+        let mut keep = vec![true; self.pairs.len()];
         for p in 0..self.pairs.len() {
-            let copy = kept.iter().any(|&k| {
-                same(&self.pairs[k], &self.pairs[p])
+            keep[p] = !(0..p).any(|k| {
+                keep[k]
+                    && self.pairs[k].same_solids(&self.pairs[p])
                     && signatures[k].iter().zip(&signatures[p]).all(|(a, b)| (a - b).abs() <= COPY_TOLERANCE)
             });
-            if !copy {
-                kept.push(p);
-            }
         }
-        let mut index = 0;
-        self.pairs.retain(|_| {
-            index += 1;
-            kept.contains(&(index - 1))
-        });
+        let mut keep = keep.into_iter();
+        self.pairs.retain(|_| keep.next().expect("one flag per pair"));
     }
 
     /// The separation of pair `p` at the placements in `data`.
