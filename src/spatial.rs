@@ -485,6 +485,14 @@ impl std::ops::Add for SpatialInertia {
     }
 }
 
+impl std::ops::Sub for SpatialInertia {
+    type Output = SpatialInertia;
+    #[inline]
+    fn sub(self, o: SpatialInertia) -> SpatialInertia {
+        SpatialInertia { m: self.m - o.m, h: self.h - o.h, i_o: self.i_o - o.i_o }
+    }
+}
+
 /// The 6×6 matrix of `m ×` (Featherstone's `crm`).
 pub fn motion_cross_matrix(m: &Motion) -> Mat6 {
     let mut out = Mat6::zeros();

@@ -8,7 +8,14 @@ mod common;
 
 use common::{random_tree, Rng};
 use mintorque::dynamics::{
-    aba::aba, crba::crba, kinematics, rnea::rnea, rnea_derivatives::rnea_derivatives, rnea_gradient::rnea_gradient, Data,
+    aba::aba,
+    crba::crba,
+    kinematics,
+    rnea::rnea,
+    rnea_derivatives::rnea_derivatives,
+    rnea_gradient::rnea_gradient,
+    rnea_gradient_moved::{restore, rnea_gradient_moved, Moved, Subtrees},
+    Data,
 };
 use mintorque::spatial::{Force, Motion, Vec3};
 use mintorque::Model;
@@ -80,6 +87,46 @@ proptest! {
         prop_assert!(e_q < 1e-6, "∂τ/∂q off by {e_q:e}");
         prop_assert!(e_v < 1e-6, "∂τ/∂q̇ off by {e_v:e}");
         prop_assert!(e_a < 1e-6, "∂τ/∂q̈ = H off by {e_a:e}");
+    }
+
+    /// A pass after one moved coordinate (the subtree recomputed, the ancestors updated by its change) gives
+    /// the full pass's `∇φ`, `τ` and root wrench at the moved state, for every `q_j` and `q̇_j`; `restore`
+    /// gives back the base data.
+    #[test]
+    fn a_moved_gradient_pass_is_the_full_pass(seed in any::<u64>(), n in 1usize..=40) {
+        let model = random_tree(seed, n);
+        let (q, v, a) = state(seed, n);
+        let fext = random_fext(&model, seed);
+        let mut rng = Rng(seed ^ 0x99);
+        let omega = rng.vec(n, -1.0, 1.0);
+        let u = rng.vec(6, -1.0, 1.0);
+        let u0 = Motion::new(Vec3::new(u[0], u[1], u[2]), Vec3::new(u[3], u[4], u[5]));
+        let subtrees = Subtrees::of(&model);
+        let mut base = Data::new(&model);
+        let mut grad = [vec![0.0; n], vec![0.0; n], vec![0.0; n]];
+        let [gq, gv, ga] = &mut grad;
+        rnea_gradient(&model, &mut base, (&q, &v, &a), &G, Some(&fext), &omega, &u0, (gq, gv, ga));
+        let (mut data, mut full) = (base.clone(), Data::new(&model));
+        for j in 0..n {
+            for moved in [Moved::Position, Moved::Velocity] {
+                let (mut q1, mut v1) = (q.clone(), v.clone());
+                if moved == Moved::Position { q1[j] += 0.3 } else { v1[j] -= 0.7 }
+                let mut expect = [vec![0.0; n], vec![0.0; n], vec![0.0; n]];
+                let [eq, ev, ea] = &mut expect;
+                rnea_gradient(&model, &mut full, (&q1, &v1, &a), &G, Some(&fext), &omega, &u0, (eq, ev, ea));
+                let mut got = grad.clone();
+                let [oq, ov, oa] = &mut got;
+                rnea_gradient_moved(&model, (&base, &mut data), (&q1, &v1, &a), &G, Some(&fext), (&omega, &u0), (j, moved, &subtrees), (oq, ov, oa));
+                let scale = expect.iter().flatten().fold(1.0f64, |m, e| m.max(e.abs()));
+                for (g, e) in got.iter().flatten().zip(expect.iter().flatten()) {
+                    prop_assert!((g - e).abs() <= 1e-12 * scale, "j {} {:?}: {} against {}", j, moved, g, e);
+                }
+                prop_assert!((&data.tau - &full.tau).amax() <= 1e-12 * scale);
+                prop_assert!((data.root_wrench.to_vec6() - full.root_wrench.to_vec6()).amax() <= 1e-12 * scale.max(full.root_wrench.to_vec6().amax()));
+                restore(&base, &mut data, j, &subtrees);
+                prop_assert!(data.tau == base.tau && data.oMi == base.oMi && data.G == base.G && data.f == base.f);
+            }
+        }
     }
 
     /// The O(n) gradient of `φ = ωᵀτ + u₀·W` against central differences of `φ` itself (independent of the

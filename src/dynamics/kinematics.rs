@@ -82,30 +82,35 @@ pub fn placements(model: &Model, data: &mut Data, q: &[f64]) {
     data.oMi[0] = Transform::IDENTITY;
     data.oI[0] = data.I_local[0].spatial();
     for i in 1..model.bodies.len() {
-        let joint = &model.joints[i];
-        // ⁰Mᵢ = (⁰M_λ(i) · Dᵢ) · e^{Ŝᵢ qᵢ}   (eq. 17); the joint's own motion leaves its axis fixed.
-        let mut o_m_i = data.oMi[joint.parent].compose(&joint.placement);
-        data.S[i] = match data.joint_motion[i] {
-            JointMotion::RevoluteAxis { k, sign } => {
-                let w = o_m_i.rotation.column(k) * sign;
-                rotate_about_column(&mut o_m_i.rotation, k, sign * q[i - 1]);
-                Motion::new(w, o_m_i.translation.cross(&w))
-            }
-            JointMotion::Revolute { axis } => {
-                let w = o_m_i.rotation * axis;
-                o_m_i.rotation *= axis_angle(&axis, q[i - 1]);
-                Motion::new(w, o_m_i.translation.cross(&w))
-            }
-            JointMotion::Prismatic { axis } => {
-                let d = o_m_i.rotation * axis;
-                o_m_i.translation += d * q[i - 1];
-                Motion::new(Vec3::zeros(), d)
-            }
-            JointMotion::Root => Motion::ZERO,
-        };
-        data.oI[i] = data.I_local[i].spatial_in(&o_m_i);
-        data.oMi[i] = o_m_i;
+        place_body(model, data, q, i);
     }
+}
+
+/// Body `i`'s step of [`placements`] (its parent placed): `⁰Mᵢ = ⁰M_λ(i) · ᵖMᵢ · e^{Ŝqᵢ}`, `Sᵢ`, `oIᵢ`.
+#[inline]
+pub(super) fn place_body(model: &Model, data: &mut Data, q: &[f64], i: usize) {
+    let joint = &model.joints[i];
+    let mut o_m_i = data.oMi[joint.parent].compose(&joint.placement);
+    data.S[i] = match data.joint_motion[i] {
+        JointMotion::RevoluteAxis { k, sign } => {
+            let w = o_m_i.rotation.column(k) * sign;
+            rotate_about_column(&mut o_m_i.rotation, k, sign * q[i - 1]);
+            Motion::new(w, o_m_i.translation.cross(&w))
+        }
+        JointMotion::Revolute { axis } => {
+            let w = o_m_i.rotation * axis;
+            o_m_i.rotation *= axis_angle(&axis, q[i - 1]);
+            Motion::new(w, o_m_i.translation.cross(&w))
+        }
+        JointMotion::Prismatic { axis } => {
+            let d = o_m_i.rotation * axis;
+            o_m_i.translation += d * q[i - 1];
+            Motion::new(Vec3::zeros(), d)
+        }
+        JointMotion::Root => Motion::ZERO,
+    };
+    data.oI[i] = data.I_local[i].spatial_in(&o_m_i);
+    data.oMi[i] = o_m_i;
 }
 
 /// Velocities after [`placements`]: `vᵢ = v_λ(i) + Sᵢ q̇ᵢ` and `Ṡᵢ = v_λ(i) × Sᵢ`. World coordinates make
@@ -113,11 +118,17 @@ pub fn placements(model: &Model, data: &mut Data, q: &[f64]) {
 pub fn velocities(model: &Model, data: &mut Data, v: &[f64]) {
     data.v[0] = Motion::ZERO;
     for i in 1..model.bodies.len() {
-        let p = model.joints[i].parent;
-        let s = data.S[i];
-        data.Sdot[i] = data.v[p].cross(&s);
-        data.v[i] = data.v[p].add_scaled(&s, v[i - 1]);
+        body_velocity(model, data, v, i);
     }
+}
+
+/// Body `i`'s step of [`velocities`]: `Ṡᵢ = v_λ(i) × Sᵢ`, `vᵢ = v_λ(i) + Sᵢ q̇ᵢ`.
+#[inline]
+pub(super) fn body_velocity(model: &Model, data: &mut Data, v: &[f64], i: usize) {
+    let p = model.joints[i].parent;
+    let s = data.S[i];
+    data.Sdot[i] = data.v[p].cross(&s);
+    data.v[i] = data.v[p].add_scaled(&s, v[i - 1]);
 }
 
 /// Accelerations after [`velocities`]: `aᵢ = a_λ(i) + Sᵢ q̈ᵢ + Ṡᵢ q̇ᵢ` with `a₀ = −g` (gravity as a
@@ -125,9 +136,15 @@ pub fn velocities(model: &Model, data: &mut Data, v: &[f64]) {
 pub fn accelerations(model: &Model, data: &mut Data, v: &[f64], a: &[f64], gravity: &Vec3) {
     data.a[0] = Motion::new(Vec3::zeros(), -gravity);
     for i in 1..model.bodies.len() {
-        let p = model.joints[i].parent;
-        data.a[i] = data.a[p].add_scaled(&data.S[i], a[i - 1]).add_scaled(&data.Sdot[i], v[i - 1]);
+        body_acceleration(model, data, (v, a), i);
     }
+}
+
+/// Body `i`'s step of [`accelerations`]: `aᵢ = a_λ(i) + Sᵢ q̈ᵢ + Ṡᵢ q̇ᵢ`.
+#[inline]
+pub(super) fn body_acceleration(model: &Model, data: &mut Data, (v, a): (&[f64], &[f64]), i: usize) {
+    let p = model.joints[i].parent;
+    data.a[i] = data.a[p].add_scaled(&data.S[i], a[i - 1]).add_scaled(&data.Sdot[i], v[i - 1]);
 }
 
 /// World placement of a named frame's index after [`placements`].

@@ -19,5 +19,6 @@ pub mod point_force;
 pub mod rnea;
 pub mod rnea_derivatives;
 pub mod rnea_gradient;
+pub mod rnea_gradient_moved;
 
 pub use data::Data;

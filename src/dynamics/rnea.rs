@@ -15,14 +15,20 @@ pub type ExternalForces<'a> = Option<&'a [Force]>;
 /// (eq. 12's `H q̈ + Q` body by body), in world coordinates.
 pub fn body_forces(model: &Model, data: &mut Data, fext: ExternalForces) {
     for i in 0..model.bodies.len() {
-        let inertia = &data.oI[i];
-        let (v, a) = (&data.v[i], &data.a[i]);
-        let mut f = inertia.mul(a) + v.cross_force(&inertia.mul(v));
-        if let Some(fext) = fext {
-            f -= data.oMi[i].act_force(&fext[i]);
-        }
-        data.f[i] = f;
+        body_force(data, fext, i);
     }
+}
+
+/// Body `i`'s step of [`body_forces`].
+#[inline]
+pub(super) fn body_force(data: &mut Data, fext: ExternalForces, i: usize) {
+    let inertia = &data.oI[i];
+    let (v, a) = (&data.v[i], &data.a[i]);
+    let mut f = inertia.mul(a) + v.cross_force(&inertia.mul(v));
+    if let Some(fext) = fext {
+        f -= data.oMi[i].act_force(&fext[i]);
+    }
+    data.f[i] = f;
 }
 
 /// The inflow pass: `F_λ(i) += Fᵢ` from the leaves to the root, `τᵢ = Sᵢ · Fᵢ`.

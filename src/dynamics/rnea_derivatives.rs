@@ -99,18 +99,24 @@ pub(super) fn check_sizes(model: &Model, q: &[f64], v: &[f64], a: &[f64]) {
 /// `B_ww,ᵢ`, the linear momentum `pᵢ`, and `Yᵢ = Iᵢ` (made composite by the backward pass).
 pub(super) fn body_seeds(model: &Model, data: &mut Data) {
     for i in 0..model.bodies.len() {
-        let parent = model.joints[i].parent;
-        if i > 0 {
-            data.A[i] = data.a[parent].cross(&data.S[i]) + data.v[parent].cross(&data.Sdot[i]);
-        }
-        let inertia = data.oI[i];
-        let momentum = inertia.mul(&data.v[i]);
-        let (w, u) = (data.v[i].w, data.v[i].v);
-        // B_ww = ω̃I_o + (ω̃I_o)ᵀ − ñ − h uᵀ − u hᵀ + 2(u·h)1
-        let t = skew(&w) * inertia.i_o;
-        data.B_ww[i] = t + t.transpose() - skew(&momentum.n) - inertia.h * u.transpose() - u * inertia.h.transpose()
-            + Mat3::identity() * (2.0 * u.dot(&inertia.h));
-        data.p[i] = momentum.f;
-        data.Y[i] = inertia;
+        body_seed(model, data, i);
     }
+}
+
+/// Body `i`'s step of [`body_seeds`].
+#[inline]
+pub(super) fn body_seed(model: &Model, data: &mut Data, i: usize) {
+    let parent = model.joints[i].parent;
+    if i > 0 {
+        data.A[i] = data.a[parent].cross(&data.S[i]) + data.v[parent].cross(&data.Sdot[i]);
+    }
+    let inertia = data.oI[i];
+    let momentum = inertia.mul(&data.v[i]);
+    let (w, u) = (data.v[i].w, data.v[i].v);
+    // B_ww = ω̃I_o + (ω̃I_o)ᵀ − ñ − h uᵀ − u hᵀ + 2(u·h)1
+    let t = skew(&w) * inertia.i_o;
+    data.B_ww[i] = t + t.transpose() - skew(&momentum.n) - inertia.h * u.transpose() - u * inertia.h.transpose()
+        + Mat3::identity() * (2.0 * u.dot(&inertia.h));
+    data.p[i] = momentum.f;
+    data.Y[i] = inertia;
 }

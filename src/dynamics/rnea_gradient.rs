@@ -76,25 +76,15 @@ pub fn rnea_gradient_placed(
     body_seeds(model, data);
     ancestor_weights(model, data, omega, u0);
     for i in (1..model.bodies.len()).rev() {
-        let (s_i, sdot_i, a_i, u_i) = (data.S[i], data.Sdot[i], data.A[i], data.Uw[i]);
-        let (y_i, b_ww, p_i, f_i) = (data.Y[i], data.B_ww[i], data.p[i], data.f[i]);
-        let b_times = |x: &Motion| Force::new(b_ww * x.w, -2.0 * p_i.cross(&x.w));
-        // τᵢ = Sᵢ · Fᵢ
-        data.tau[i - 1] = s_i.dot(&f_i);
-        // G_i += ωᵢ YᵢSᵢ,  β_i += ωᵢ (B_wwᵀ Sᵢ_ω − 2 Sᵢ_v × pᵢ)   (the subtree's own term; children added already)
-        let y_s = y_i.mul(&s_i);
+        // G_i += ωᵢ YᵢSᵢ,  β_i += ωᵢ bᵢ   (the subtree's own term; children added already)
         let w_i = omega[i - 1];
-        data.G[i] += y_s * w_i;
-        data.beta[i] += (b_ww.transpose() * s_i.w - 2.0 * s_i.v.cross(&p_i)) * w_i;
-        // D_i = Sᵢ ×* Fᵢ + Yᵢ Aᵢ + Bᵢ Ṡᵢ,  E_i = 2 Yᵢ Ṡᵢ + Bᵢ Sᵢ
-        let d_q = s_i.cross_force(&f_i) + y_i.mul(&a_i) + b_times(&sdot_i);
-        let d_v = y_i.mul(&sdot_i) * 2.0 + b_times(&s_i);
-        let (g, beta) = (data.G[i], data.beta[i]);
-        g_q[i - 1] = a_i.dot(&g) + sdot_i.w.dot(&beta) + u_i.dot(&d_q);
-        g_v[i - 1] = 2.0 * sdot_i.dot(&g) + s_i.w.dot(&beta) + u_i.dot(&d_v);
-        g_a[i - 1] = s_i.dot(&g) + u_i.dot(&y_s);
+        data.G[i] += data.Y[i].mul(&data.S[i]) * w_i;
+        let b_i = own_beta(data, i);
+        data.beta[i] += b_i * w_i;
+        body_gradient(data, i, (&mut *g_q, &mut *g_v, &mut *g_a));
         // The composites and the subtree sums flow to the parent.
         let parent = model.joints[i].parent;
+        let (y_i, b_ww, p_i, f_i, g, beta) = (data.Y[i], data.B_ww[i], data.p[i], data.f[i], data.G[i], data.beta[i]);
         data.Y[parent] += y_i;
         data.B_ww[parent] += b_ww;
         data.p[parent] += p_i;
@@ -103,6 +93,32 @@ pub fn rnea_gradient_placed(
         data.beta[parent] += beta;
     }
     data.root_wrench = data.f[0];
+}
+
+/// `bᵢ = B_ww,ᵢᵀ Sᵢ_ω − 2 Sᵢ_v × pᵢ` of body `i`'s composites.
+#[inline]
+pub(super) fn own_beta(data: &Data, i: usize) -> Vec3 {
+    let s_i = &data.S[i];
+    data.B_ww[i].transpose() * s_i.w - 2.0 * s_i.v.cross(&data.p[i])
+}
+
+/// `τᵢ` and body `i`'s entries of `∇φ` from its composites `Yᵢ, B_ww,ᵢ, pᵢ, Fᵢ` and subtree sums `G_i, β_i`
+/// (both complete) and `U_i`: `∂φ/∂q_i = Aᵢ·G_i + Ṡᵢ,ω·β_i + U_i·D_i`, `∂φ/∂q̇_i = 2Ṡᵢ·G_i + Sᵢ,ω·β_i + U_i·E_i`,
+/// `∂φ/∂q̈_i = Sᵢ·G_i + U_i·YᵢSᵢ` (module docs).
+#[inline]
+pub(super) fn body_gradient(data: &mut Data, i: usize, (g_q, g_v, g_a): (&mut [f64], &mut [f64], &mut [f64])) {
+    let (s_i, sdot_i, a_i, u_i) = (data.S[i], data.Sdot[i], data.A[i], data.Uw[i]);
+    let (y_i, b_ww, p_i, f_i) = (data.Y[i], data.B_ww[i], data.p[i], data.f[i]);
+    let b_times = |x: &Motion| Force::new(b_ww * x.w, -2.0 * p_i.cross(&x.w));
+    // τᵢ = Sᵢ · Fᵢ
+    data.tau[i - 1] = s_i.dot(&f_i);
+    // D_i = Sᵢ ×* Fᵢ + Yᵢ Aᵢ + Bᵢ Ṡᵢ,  E_i = 2 Yᵢ Ṡᵢ + Bᵢ Sᵢ
+    let d_q = s_i.cross_force(&f_i) + y_i.mul(&a_i) + b_times(&sdot_i);
+    let d_v = y_i.mul(&sdot_i) * 2.0 + b_times(&s_i);
+    let (g, beta) = (data.G[i], data.beta[i]);
+    g_q[i - 1] = a_i.dot(&g) + sdot_i.w.dot(&beta) + u_i.dot(&d_q);
+    g_v[i - 1] = 2.0 * sdot_i.dot(&g) + s_i.w.dot(&beta) + u_i.dot(&d_v);
+    g_a[i - 1] = s_i.dot(&g) + u_i.dot(&y_i.mul(&s_i));
 }
 
 /// `U_i = u₀ + Σ_{0 < j ≺ i} ωⱼ Sⱼ` from the root out (`U_i = U_λ(i) + ω_λ(i) S_λ(i)`), and `G`, `β` cleared.

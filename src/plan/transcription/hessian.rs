@@ -22,8 +22,11 @@
 //! are linear and add nothing.
 
 use super::constraints::balance_coefficients;
+use super::node_gradient::Pass;
 use super::{IneqRow, Transcription};
-use crate::dynamics::{kinematics, point_force::point_jacobian};
+use crate::dynamics::rnea_gradient_moved::{restore, Moved, Subtrees};
+use crate::dynamics::{kinematics, point_force::point_jacobian, Data};
+use crate::model::Model;
 use crate::solve::SymmetricMatrix;
 use crate::trajectory::bspline::BasisAt;
 
@@ -57,10 +60,16 @@ pub(super) struct HessianWork {
     local: Vec<LocalUnknown>,
     /// `ω̂ = ω + ρ f(q, q̇)`, the torques' weights at the state of a pass (`node_gradient.rs`).
     pub(super) omega_hat: Vec<f64>,
+    /// The engine's pass at the node's state and its `∇(ω̂ᵀτ + u₀·W)` (`3nv`), the base of the moved passes;
+    /// each joint's subtree and ancestors (`dynamics::rnea_gradient_moved`).
+    pub(super) base: Data,
+    pub(super) base_gradient: Vec<f64>,
+    pub(super) subtrees: Subtrees,
 }
 
 impl HessianWork {
-    pub(super) fn new(nv: usize, nl: usize) -> Self {
+    pub(super) fn new(model: &Model, nl: usize) -> Self {
+        let nv = model.nv();
         let d = 3 * nv + nl;
         HessianWork {
             z: vec![0.0; d],
@@ -75,6 +84,9 @@ impl HessianWork {
             root_w: [0.0; 6],
             local: Vec::with_capacity(4 * (nv + nl)),
             omega_hat: vec![0.0; nv],
+            base: Data::new(model),
+            base_gradient: vec![0.0; 3 * nv],
+            subtrees: Subtrees::of(model),
         }
     }
 }
@@ -177,13 +189,20 @@ impl Transcription<'_> {
         self.save_state();
         let mut grad = std::mem::take(&mut self.hess.grad);
         let mut perturbed = std::mem::take(&mut self.hess.grad_perturbed);
-        self.node_gradient(&mut grad, false);
+        // A fixed-base tree: each perturbed pass recomputes the moved joint's subtree only. A free body
+        // (whose root moves every body) repeats whole passes; a q̇ column keeps q, so the placements of the
+        // previous pass hold from the second q̇ column on.
+        let free = !self.free.dofs.is_empty();
+        self.node_gradient(&mut grad, if free { Pass::Full { placed: false } } else { Pass::Base });
         self.hess.s.fill(0.0);
         for j in 0..2 * nv {
             self.restore_state();
             let epsilon = self.perturb(j);
-            // A q̇ column keeps q: the placements of the previous pass hold from the second q̇ column on.
-            self.node_gradient(&mut perturbed, j > nv);
+            let moved = if j < nv { (j, Moved::Position) } else { (j - nv, Moved::Velocity) };
+            self.node_gradient(&mut perturbed, if free { Pass::Full { placed: j > nv } } else { Pass::Moved(moved.0, moved.1) });
+            if !free {
+                restore(&self.hess.base, &mut self.data, moved.0, &self.hess.subtrees);
+            }
             // Column j (a q or q̇ column), and row j by symmetry for the q̈ and λ columns.
             for i in 0..d {
                 let v = (perturbed[i] - grad[i]) / epsilon;

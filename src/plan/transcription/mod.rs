@@ -276,7 +276,7 @@ impl<'s> Transcription<'s> {
             total_weight,
             collisions,
             work,
-            hess: hessian::HessianWork::new(nv, n_lambda),
+            hess: hessian::HessianWork::new(&spec.model, n_lambda),
             goals,
             root: root::RootRows::default(),
             free: root::FreeBody::new(spec, n_lambda),

@@ -13,21 +13,34 @@
 use super::Transcription;
 use crate::dynamics::point_force::{add_generalized_force, generalized_force_derivative};
 use crate::dynamics::rnea_gradient::{rnea_gradient, rnea_gradient_placed};
+use crate::dynamics::rnea_gradient_moved::{keep_as_base, rnea_gradient_moved, Moved};
 use crate::dynamics::{kinematics, Data};
 use crate::spatial::{Force, Motion, Vec3};
 
+/// How [`Transcription::node_gradient`] runs the engine's pass.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum Pass {
+    /// The whole tree; `placed`: the engine's placements are those of `work.q` already.
+    Full { placed: bool },
+    /// The whole tree, kept (with its gradient) as the base of the moved passes that follow (`hess.base`).
+    Base,
+    /// Only what moving `q_j` or `q̇_j` from the base state changes ([`rnea_gradient_moved`]; a fixed-base
+    /// tree). The caller restores `data` afterwards.
+    Moved(usize, Moved),
+}
+
 impl Transcription<'_> {
     /// `∇φ` at the state in `self.work` into `out`: `[∂/∂q, ∂/∂q̇, ∂/∂q̈, ∂/∂λ̃]`. Leaves the active torque
-    /// in `work.tau`. `placed`: the engine's placements are those of `work.q` already.
-    pub(super) fn node_gradient(&mut self, out: &mut [f64], placed: bool) {
+    /// in `work.tau`.
+    pub(super) fn node_gradient(&mut self, out: &mut [f64], pass: Pass) {
         self.effective_weights();
         if !self.free.dofs.is_empty() {
-            return self.free_node_gradient(out, placed);
+            return self.free_node_gradient(out, pass == Pass::Full { placed: true });
         }
         let ow = &self.hess.omega_w;
         let u0 = Motion::new(Vec3::new(ow[0], ow[1], ow[2]), Vec3::new(ow[3], ow[4], ow[5]));
         let omega = std::mem::take(&mut self.hess.omega_hat);
-        self.contracted_gradient(out, placed, &omega, &u0);
+        self.contracted_gradient(out, pass, &omega, &u0);
         self.hess.omega_hat = omega;
         if self.spec.strength.is_some() {
             self.add_strength_gradient(out);
@@ -36,18 +49,34 @@ impl Transcription<'_> {
 
     /// `∇(ωᵀτ + u₀·W)` at the state in `self.work` into `out` for given weights `ω` (nv) and `u₀`, `τ` the
     /// torques with the passive ones, loads and contact forces (module docs; no strength terms); `τ` into
-    /// `work.tau`. `placed`: the engine's placements are those of `work.q` already.
-    pub(super) fn contracted_gradient(&mut self, out: &mut [f64], placed: bool, omega: &[f64], u0: &Motion) {
+    /// `work.tau`; `pass` as in [`Self::node_gradient`].
+    pub(super) fn contracted_gradient(&mut self, out: &mut [f64], pass: Pass, omega: &[f64], u0: &Motion) {
         let (spec, nv) = (self.spec, self.layout.nv);
-        let (w, data) = (&mut self.work, &mut self.data);
+        let (w, data, h) = (&mut self.work, &mut self.data, &mut self.hess);
         out.fill(0.0);
+        // ∇(ωᵀτ_ID + u₀·W_ID), and τ = τ_ID
+        let z = (&w.q[..], &w.qd[..], &w.qdd[..]);
+        if let Pass::Moved(..) = pass {
+            out[..3 * nv].copy_from_slice(&h.base_gradient);
+        }
         let (g_q, rest) = out.split_at_mut(nv);
         let (g_v, rest) = rest.split_at_mut(nv);
         let (g_a, g_l) = rest.split_at_mut(nv);
-        // ∇(ωᵀτ_ID + u₀·W_ID), and τ = τ_ID
-        let z = (&w.q[..], &w.qd[..], &w.qdd[..]);
-        let gradient = if placed { rnea_gradient_placed } else { rnea_gradient };
-        gradient(&spec.model, data, z, &spec.gravity, None, omega, u0, (&mut *g_q, &mut *g_v, g_a));
+        let (model, gravity) = (&spec.model, &spec.gravity);
+        match pass {
+            Pass::Full { placed: true } => rnea_gradient_placed(model, data, z, gravity, None, omega, u0, (g_q, g_v, g_a)),
+            Pass::Full { placed: false } | Pass::Base => rnea_gradient(model, data, z, gravity, None, omega, u0, (g_q, g_v, g_a)),
+            Pass::Moved(j, moved) => {
+                let engine = (&h.base, &mut *data);
+                rnea_gradient_moved(model, engine, z, gravity, None, (omega, u0), (j, moved, &h.subtrees), (g_q, g_v, g_a))
+            }
+        }
+        if pass == Pass::Base {
+            keep_as_base(data, &mut h.base);
+            for (k, g) in [&*g_q, &*g_v, &*g_a].into_iter().enumerate() {
+                h.base_gradient[k * nv..(k + 1) * nv].copy_from_slice(g);
+            }
+        }
         w.tau.copy_from_slice(data.tau.as_slice());
         // τ −= τ_passive(q, q̇) = −k(q − q₀) − d q̇:  ∂φ/∂qᵢ += ωᵢ kᵢ, ∂φ/∂q̇ᵢ += ωᵢ dᵢ
         for i in 0..nv {

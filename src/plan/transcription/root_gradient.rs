@@ -33,7 +33,7 @@ impl Transcription<'_> {
         self.free_weights();
         // ∇(ω̃ᵀτ) (+ ŵᵀτ when the rows are the root's forces), τ with passive torques, loads and contacts
         let first = std::mem::take(&mut self.free.omega_first);
-        self.contracted_gradient(out, true, &first, &Motion::ZERO);
+        self.contracted_gradient(out, super::node_gradient::Pass::Full { placed: true }, &first, &Motion::ZERO);
         self.free.omega_first = first;
         let (model, w, data, f) = (&self.spec.model, &mut self.work, &mut self.data, &mut self.free);
         let r = &f.dofs;
@@ -126,7 +126,7 @@ mod tests {
                 t.node_state(k);
                 t.hess.omega.iter_mut().for_each(|o| *o = random(-2.0, 2.0));
                 t.hess.root_w.iter_mut().for_each(|w| *w = random(-2.0, 2.0));
-                t.node_gradient(&mut contracted, false);
+                t.node_gradient(&mut contracted, crate::plan::transcription::node_gradient::Pass::Full { placed: false });
                 let tau = t.work.tau.clone();
                 t.node_state(k);
                 t.node_gradient_of_rows(&mut projected);
