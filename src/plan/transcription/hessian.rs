@@ -12,7 +12,8 @@
 //!
 //! `Bₖ` the chain rule of eq. 33 (the four basis functions and their derivatives). `∇φₖ` is exact and costs
 //! one O(nv) contracted pass of the engine (`node_gradient.rs`, `dynamics::rnea_gradient`), and `∇²φₖ` is its
-//! forward difference along each `qᵢ` and `q̇ᵢ` — `2·nv` such passes at one node — completed by structure: `τ` is linear in `q̈`
+//! forward difference along each `qᵢ` and `q̇ᵢ` — `2·nv` such passes at one node, each recomputing only the moved
+//! joint's subtree (`dynamics::rnea_gradient_moved`; whole passes for a free root) — completed by structure: `τ` is linear in `q̈`
 //! and in `λ`, and `∂τ/∂q̈ = H(q)` does not depend on `q̇`, so `∂²φ/∂q̈² = ∂²φ/∂q̈∂q̇ = ∂²φ/∂λ² = ∂²φ/∂λ∂q̇ = 0`
 //! and the remaining blocks follow by symmetry from the `q` and `q̇` columns. The loop closures
 //! `Φ = Eᵀ(p(q) − target)` at the contact nodes add `Σ w_h ∇²Φ`, the difference of the point Jacobians
