@@ -39,3 +39,17 @@ fn the_interior_point_reaches_the_structured_optimum_on_single_basin_examples() 
     agree("leg_lift", 1e-5);
     agree("two_arm_reach", 1e-5);
 }
+
+/// The closed loop's end game: at N = 31 the push-up's hands carry equality multipliers of 5·10⁶ next to the
+/// clamped start, and the regularised step climbs `φ` while it descends the augmented Lagrangian; with the
+/// filter alone every step was cut to 1/64 and the solve crawled (111 iterations; at N = 32, 197, one short of
+/// the stall window). Searching on the augmented Lagrangian once the filter cuts below a tenth: 55.
+#[test]
+fn the_push_up_end_game_does_not_crawl() {
+    let t = task("push_up");
+    let mut spec = t.spec.clone();
+    spec.n_ctrl = 31;
+    let planned = plan::plan(&spec, SolverKind::InteriorPoint, &t.settings, &mut |_| {}).unwrap();
+    assert!(planned.converged(), "{}", planned.outcome.reason);
+    assert!(planned.outcome.iterations <= 80, "{} iterations", planned.outcome.iterations);
+}
