@@ -53,3 +53,43 @@ fn the_push_up_end_game_does_not_crawl() {
     assert!(planned.converged(), "{}", planned.outcome.reason);
     assert!(planned.outcome.iterations <= 80, "{} iterations", planned.outcome.iterations);
 }
+
+/// The rows a transcription declares proportional to a residual row (a constant torque limit and the effort's
+/// residual of the same torque at the same node) are that row times the factor, entry by entry, at a point
+/// off the guess — on every bundled example and peer task. The interior point adds such a row's Gram term
+/// into the residual's, so a wrong declaration would be a wrong Newton matrix.
+#[test]
+fn declared_proportional_rows_are_proportional() {
+    use mintorque::plan::Transcription;
+    use mintorque::solve::{Evaluation, Problem};
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files: Vec<_> = ["examples", "bench/peer/tasks"]
+        .iter()
+        .flat_map(|d| std::fs::read_dir(root.join(d)).unwrap().map(|e| e.unwrap().path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    files.sort();
+    let (mut declared, mut with_rows) = (0, Vec::new());
+    for file in files {
+        let task = Task::load(&file).unwrap();
+        let mut problem = Transcription::new(&task.spec).unwrap();
+        let x0 = plan::initial_x(&task.spec, &mut problem).unwrap();
+        let x: Vec<f64> = x0.iter().enumerate().map(|(i, v)| v + 0.05 * (1.7 * i as f64).sin()).collect();
+        let mut eval = Evaluation::new(problem.dims(), &problem.jacobian_patterns()).unwrap();
+        problem.evaluate(&x, true, &mut eval).unwrap();
+        let rows = problem.proportional_rows();
+        for p in &rows {
+            assert_eq!(eval.jg.row_cols(p.ineq), eval.jr.row_cols(p.residual), "{file:?} {p:?}");
+            let scale = eval.jg.row_values(p.ineq).iter().fold(0.0_f64, |a, v| a.max(v.abs()));
+            for (g, r) in eval.jg.row_values(p.ineq).iter().zip(eval.jr.row_values(p.residual)) {
+                assert!((g - p.factor * r).abs() <= 1e-12 * scale.max(1.0), "{file:?} {p:?}: {g} vs {}", p.factor * r);
+            }
+        }
+        if !rows.is_empty() {
+            with_rows.push(file.file_stem().unwrap().to_string_lossy().to_string());
+        }
+        declared += rows.len();
+    }
+    println!("{declared} proportional rows over {with_rows:?}");
+    assert!(with_rows.iter().any(|t| t == "h36_wave_step_earth") && with_rows.iter().any(|t| t == "arm_lift_earth"));
+}

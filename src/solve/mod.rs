@@ -35,7 +35,7 @@ pub use interior_point::InteriorPoint;
 pub use least_squares::{AugLagLevenbergMarquardt, AugLagNewton};
 pub use linalg::{Cholesky, NotPositiveDefinite, SymmetricMatrix};
 pub use line_search::{EvalError, Iterate, LineSearch, Objective};
-pub use problem::{ConstraintKind, Dims, Evaluation, Patterns, Problem, ProblemError, RowFamily, Scales};
+pub use problem::{ConstraintKind, Dims, Evaluation, Patterns, Problem, ProblemError, Proportional, RowFamily, Scales};
 pub use solver::{Cancel, ConstraintRef, Multipliers, Outcome, Progress, Settings, Solver, StopReason, STUCK_FAR_FROM_FEASIBLE};
 pub use sparse::{PatternError, SparseMatrix};
 pub use trace::Trace;

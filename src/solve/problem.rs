@@ -223,6 +223,17 @@ fn all_finite(values: &[f64]) -> bool {
     values.iter().fold(true, |finite, v| finite & v.is_finite())
 }
 
+/// An inequality row proportional to a residual row ([`Problem::proportional_rows`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Proportional {
+    /// Index in `g`.
+    pub ineq: usize,
+    /// Index in `r`.
+    pub residual: usize,
+    /// `∇g_ineq = factor · ∇r_residual`.
+    pub factor: f64,
+}
+
 /// A finite-dimensional constrained least-squares problem.
 pub trait Problem {
     /// Sizes of `x`, `r`, `h` and `g`.
@@ -251,6 +262,14 @@ pub trait Problem {
         false
     }
 
+    /// Inequality rows whose Jacobian row is, at every `x`, a fixed multiple of a residual row's over the
+    /// same pattern: `∇gᵢ = factor · ∇rⱼ` (a torque limit's row and the effort's residual of the same torque
+    /// at the same node). A solver may then add the row's Gram term `wᵢ∇gᵢ∇gᵢᵀ` as `wᵢ factor² ∇rⱼ∇rⱼᵀ`
+    /// into the residual's and skip the row. Default: none.
+    fn proportional_rows(&self) -> Vec<Proportional> {
+        Vec::new()
+    }
+
     /// Per-constraint scales for the violation tolerance (default: all ones).
     fn scales(&self) -> Scales {
         Scales::default()
@@ -269,6 +288,24 @@ pub trait Problem {
     fn constraint_name(&self, kind: ConstraintKind, index: usize) -> String {
         format!("{kind} constraint {index}")
     }
+}
+
+/// The problem's [`Problem::proportional_rows`], checked against the evaluated Jacobians' patterns: rows in
+/// range, each inequality once, a finite non-zero factor, the same columns as its residual row.
+pub(crate) fn checked_proportional(problem: &dyn Problem, eval: &Evaluation) -> Result<Vec<Proportional>, String> {
+    let rows = problem.proportional_rows();
+    let mut seen = vec![false; eval.jg.nrows()];
+    for p in &rows {
+        let fits = p.ineq < eval.jg.nrows() && p.residual < eval.jr.nrows();
+        if !fits || seen[p.ineq] || !p.factor.is_finite() || p.factor == 0.0 {
+            return Err(format!("proportional row {p:?}: out of range, repeated or without a finite non-zero factor"));
+        }
+        seen[p.ineq] = true;
+        if eval.jg.row_cols(p.ineq) != eval.jr.row_cols(p.residual) {
+            return Err(format!("proportional row {p:?}: its columns are not its residual row's"));
+        }
+    }
+    Ok(rows)
 }
 
 /// Scales checked against `dims`, with empty vectors expanded to ones.

@@ -221,6 +221,20 @@ impl SparseMatrix {
         }
     }
 
+    /// `out[j] = Σᵢ Jᵢⱼ²`, the diagonal of `JᵀJ`.
+    ///
+    /// # Panics
+    /// If `out` is not `ncols` long.
+    pub fn column_squares(&self, out: &mut [f64]) {
+        assert_eq!(out.len(), self.ncols);
+        out.fill(0.0);
+        for i in 0..self.nrows() {
+            for (&j, v) in self.row_cols(i).iter().zip(self.row_values(i)) {
+                out[j] += v * v;
+            }
+        }
+    }
+
     /// The matrix as a dense nalgebra matrix (tests, small problems).
     pub fn to_dense(&self) -> nalgebra::DMatrix<f64> {
         let mut m = nalgebra::DMatrix::zeros(self.nrows(), self.ncols);

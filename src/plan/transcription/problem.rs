@@ -97,6 +97,32 @@ impl Problem for Transcription<'_> {
         true
     }
 
+    /// The torque limit rows `±τ_l − τ_max` with a constant limit, against the effort's residual
+    /// `√wₖ √(c_τ W_l) τ_l` of the same node and joint when its factor is constant too (no strength term):
+    /// `factor = ±1 / (√wₖ √(c_τ W_l))`, over the same support (`torque_dofs`).
+    fn proportional_rows(&self) -> Vec<crate::solve::Proportional> {
+        let spec = self.spec;
+        if spec.objective != Objective::Torque || spec.terms.strength != 0.0 {
+            return Vec::new();
+        }
+        let (nv, n_ineq) = (self.layout.nv, self.n_ineq_node());
+        let mut rows = Vec::new();
+        for k in 0..self.n_nodes() {
+            let sw = self.nodes.w[k].sqrt();
+            for (r, row) in self.ineq_rows.iter().enumerate() {
+                let (IneqRow::UpperTorque(l) | IneqRow::LowerTorque(l)) = *row else { continue };
+                let f = sw * (spec.terms.torque * spec.weights[l]).sqrt();
+                let same_support = self.residual_dofs(l).is_some_and(|d| d == &self.torque_dofs[l][..]);
+                if spec.model.is_unactuated(l) || self.limit_varies(l) || !same_support || f.is_nan() || f <= 0.0 {
+                    continue;
+                }
+                let sign = if matches!(row, IneqRow::UpperTorque(_)) { 1.0 } else { -1.0 };
+                rows.push(crate::solve::Proportional { ineq: k * n_ineq + r, residual: k * nv + l, factor: sign / f });
+            }
+        }
+        rows
+    }
+
     fn scales(&self) -> Scales {
         let nn = self.n_nodes();
         let per_node: Vec<f64> = self

@@ -7,7 +7,9 @@ use super::relaxed;
 use crate::solve::auglag::{assess_at, checked_setup, stopped_at_start, violation_at, Assessment};
 use crate::solve::linalg::{Cholesky, SymmetricMatrix};
 use crate::solve::line_search::{norm_inf, EvalError};
-use crate::solve::problem::{evaluate_checked, ConstraintKind, Dims, Evaluation, Problem, Scales};
+use crate::solve::problem::{
+    checked_proportional, evaluate_checked, ConstraintKind, Dims, Evaluation, Problem, Proportional, Scales,
+};
 use crate::solve::solver::{ConstraintRef, Multipliers, Outcome, Progress, Settings, StopReason, DIVERGED_VIOLATION};
 
 /// The first barrier parameter, relative to the objective's scale `max(1, |F(x₀)|)` per inequality (so that
@@ -47,6 +49,12 @@ pub(crate) struct Ipm<'a> {
     pub(super) factor: Cholesky,
     pub(super) shift: Vec<f64>,
     pub(super) scaling: Vec<f64>,
+    /// Inequality rows proportional to a residual row ([`Problem::proportional_rows`], checked): their Gram
+    /// terms join the residual's weight in `work_r`.
+    pub(super) proportional: Vec<Proportional>,
+    pub(super) work_r: Vec<f64>,
+    /// `diag(JᵣᵀJᵣ)` at `x` (Moré's `D` takes its running maximum).
+    pub(super) column_squares: Vec<f64>,
     /// Work: row weights of `h` and `g`, a gradient.
     pub(super) work_h: Vec<f64>,
     pub(super) work_g: Vec<f64>,
@@ -100,6 +108,8 @@ impl<'a> Ipm<'a> {
     ) -> Result<Self, Box<Outcome>> {
         let (dims, eval, scales) =
             checked_setup(problem, x0, settings).map_err(|m| Box::new(stopped_at_start(x0, StopReason::InvalidInput(m))))?;
+        let proportional =
+            checked_proportional(&*problem, &eval).map_err(|m| Box::new(stopped_at_start(x0, StopReason::InvalidInput(m))))?;
         let matrix = SymmetricMatrix::banded(dims.n, eval.gram_bandwidth());
         let (n, m, p) = (dims.n, dims.n_ineq, dims.n_eq);
         let mut ipm = Ipm {
@@ -123,6 +133,9 @@ impl<'a> Ipm<'a> {
             s_trial: vec![0.0; m],
             shift: vec![0.0; n],
             scaling: vec![0.0; n],
+            proportional,
+            work_r: vec![1.0; dims.n_res],
+            column_squares: vec![0.0; n],
             work_h: vec![0.0; p],
             work_g: vec![0.0; m],
             gradient: vec![0.0; n],

@@ -83,25 +83,30 @@ impl Ipm<'_> {
             let sg = self.scales.ineq[i];
             self.work_g[i] = self.v[i] / (self.s[i] * sg * sg);
         }
+        // D_j = max over the iterations of (JᵣᵀJᵣ)_jj: the objective's own scale, not the barrier's Σ or ρ.
+        e.jr.column_squares(&mut self.column_squares);
+        for (d, c) in self.scaling.iter_mut().zip(&self.column_squares) {
+            *d = d.max(*c);
+        }
+        if self.rho == 0.0 {
+            self.rho = self.column_squares.iter().fold(1.0_f64, |a, &c| a.max(c)) / EQUALITY_REGULARISATION;
+        }
         for (w, s) in self.work_h.iter_mut().zip(&self.scales.eq) {
             *w = self.rho / (s * s);
         }
+        // A limit row proportional to a residual row, ∇gᵢ = c ∇rⱼ, adds Σᵢ c² ∇rⱼ∇rⱼᵀ: one outer product for
+        // the residual and both its limits, w_r,j = 1 + Σ c² Σᵢ (the rows leave JĝᵀΣJĝ).
+        self.work_r.fill(1.0);
+        for p in &self.proportional {
+            self.work_r[p.residual] += p.factor * p.factor * self.work_g[p.ineq];
+            self.work_g[p.ineq] = 0.0;
+        }
         self.matrix.fill_zero();
-        let mut assembled = e.jr.add_gram_to(None, &mut self.matrix);
-        // D_j = max over the iterations of (JᵣᵀJᵣ)_jj: the objective's own scale, not the barrier's Σ or ρ.
-        for (j, d) in self.scaling.iter_mut().enumerate() {
-            *d = d.max(self.matrix.diagonal(j));
-        }
-        if self.rho == 0.0 {
-            let largest = (0..self.dims.n).map(|j| self.matrix.diagonal(j)).fold(1.0, f64::max);
-            self.rho = largest / EQUALITY_REGULARISATION;
-            for (w, s) in self.work_h.iter_mut().zip(&self.scales.eq) {
-                *w = self.rho / (s * s);
-            }
-        }
-        assembled = assembled
-            .and_then(|()| e.jg.add_gram_to(Some(&self.work_g), &mut self.matrix))
-            .and_then(|()| e.jh.add_gram_to(Some(&self.work_h), &mut self.matrix));
+        let residual_weights = (!self.proportional.is_empty()).then_some(&self.work_r[..]);
+        let assembled =
+            e.jr.add_gram_to(residual_weights, &mut self.matrix)
+                .and_then(|()| e.jg.add_gram_to(Some(&self.work_g), &mut self.matrix))
+                .and_then(|()| e.jh.add_gram_to(Some(&self.work_h), &mut self.matrix));
         debug_assert!(assembled.is_ok(), "the band is sized from the patterns");
         // The second-order term with the Lagrangian's weights r, y/s_h, v/s_g: the problem's, recomputed every
         // EXACT_REFRESH, or the secant approximation where the problem provides none.
