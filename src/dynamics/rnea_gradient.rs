@@ -77,13 +77,29 @@ pub fn rnea_gradient_placed(
     body_seeds(model, data);
     ancestor_weights(model, data, omega, u0);
     for i in (1..model.bodies.len()).rev() {
-        // G_i += ωᵢ YᵢSᵢ,  β_i += ωᵢ bᵢ   (the subtree's own term; children added already)
-        let w_i = omega[i - 1];
-        data.G[i] += data.Y[i].mul(&data.S[i]) * w_i;
-        let b_i = own_beta(data, i);
-        data.beta[i] += b_i * w_i;
-        body_gradient(data, i, (&mut *g_q, &mut *g_v, &mut *g_a));
-        // The composites and the subtree sums flow to the parent.
+        backward_step(model, data, omega, i, true, (&mut *g_q, &mut *g_v, &mut *g_a));
+    }
+    data.root_wrench = data.f[0];
+}
+
+/// Body `i`'s step of the backward pass, its children done: its own terms join its subtree sums
+/// (`G_i += ωᵢ YᵢSᵢ`, `β_i += ωᵢ bᵢ`), then `τᵢ` and its gradient entries ([`body_gradient`]), and with `carry`
+/// its composites and sums flow to the parent.
+#[inline]
+pub(super) fn backward_step(
+    model: &Model,
+    data: &mut Data,
+    omega: &[f64],
+    i: usize,
+    carry: bool,
+    g: (&mut [f64], &mut [f64], &mut [f64]),
+) {
+    let w_i = omega[i - 1];
+    data.G[i] += data.Y[i].mul(&data.S[i]) * w_i;
+    let b_i = own_beta(data, i);
+    data.beta[i] += b_i * w_i;
+    body_gradient(data, i, g);
+    if carry {
         let parent = model.joints[i].parent;
         let (y_i, b_ww, p_i, f_i, g, beta) = (data.Y[i], data.B_ww[i], data.p[i], data.f[i], data.G[i], data.beta[i]);
         data.Y[parent] += y_i;
@@ -93,12 +109,11 @@ pub fn rnea_gradient_placed(
         data.G[parent] += g;
         data.beta[parent] += beta;
     }
-    data.root_wrench = data.f[0];
 }
 
 /// `bᵢ = B_ww,ᵢᵀ Sᵢ_ω − 2 Sᵢ_v × pᵢ` of body `i`'s composites.
 #[inline]
-pub(super) fn own_beta(data: &Data, i: usize) -> Vec3 {
+fn own_beta(data: &Data, i: usize) -> Vec3 {
     let s_i = &data.S[i];
     data.B_ww[i].transpose() * s_i.w - 2.0 * s_i.v.cross(&data.p[i])
 }

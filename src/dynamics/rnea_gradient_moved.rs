@@ -20,7 +20,7 @@
 use super::kinematics::{body_acceleration, body_velocity, place_body};
 use super::rnea::{body_force, ExternalForces};
 use super::rnea_derivatives::body_seed;
-use super::rnea_gradient::{body_gradient, own_beta};
+use super::rnea_gradient::{backward_step, body_gradient};
 use super::Data;
 use crate::model::Model;
 use crate::spatial::{Motion, Vec3};
@@ -110,21 +110,7 @@ pub fn rnea_gradient_moved(
     }
     // Its backward pass, leaves first; the subtree's root keeps its sums (they are its change's base).
     for &i in below.iter().rev() {
-        let w_i = omega[i - 1];
-        data.G[i] += data.Y[i].mul(&data.S[i]) * w_i;
-        let b_i = own_beta(data, i);
-        data.beta[i] += b_i * w_i;
-        body_gradient(data, i, (&mut *g_q, &mut *g_v, &mut *g_a));
-        if i != body {
-            let parent = model.joints[i].parent;
-            let (y_i, b_ww, p_i, f_i, g, beta) = (data.Y[i], data.B_ww[i], data.p[i], data.f[i], data.G[i], data.beta[i]);
-            data.Y[parent] += y_i;
-            data.B_ww[parent] += b_ww;
-            data.p[parent] += p_i;
-            data.f[parent] += f_i;
-            data.G[parent] += g;
-            data.beta[parent] += beta;
-        }
+        backward_step(model, data, omega, i, i != body, (&mut *g_q, &mut *g_v, &mut *g_a));
     }
     // The ancestors: base composites plus the subtree's change (module docs).
     let (dy, db, dp, df) = (
