@@ -49,7 +49,9 @@
 //! # Globalisation
 //!
 //! IPOPT's filter line search ([`filter`]) from the largest step that keeps `s` a fraction `τ = 0.99` off its
-//! bound (`v` moves to its own bound), with one second-order correction. When it finds no acceptable step
+//! bound (`v` moves to its own bound), with one second-order correction; where the point is nearly feasible but
+//! the direction climbs the barrier objective (the equalities' regularised step at large multipliers) and the
+//! filter has cut the step below a tenth, Armijo's condition on the augmented Lagrangian decides. When it finds no acceptable step
 //! the constraints are restored by damped Gauss–Newton steps on their violation ([`restoration`]), or, if
 //! they hold, `δ` is raised (a shorter, more gradient-like step) and the search tried again. `μ` falls
 //! (Fiacco–McCormick, `μ ← min(μ/5, μ^1.5)` in units of the objective's scale) once the barrier subproblem
