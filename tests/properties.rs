@@ -41,6 +41,14 @@ fn random_fext(model: &Model, seed: u64) -> Vec<Force> {
         .collect()
 }
 
+/// Weights `ω` (n) and `u₀` of a contracted gradient `φ = ωᵀτ + u₀·W`, each entry in [−1, 1].
+fn random_weights(seed: u64, n: usize) -> (Vec<f64>, Motion) {
+    let mut rng = Rng(seed);
+    let omega = rng.vec(n, -1.0, 1.0);
+    let u = rng.vec(6, -1.0, 1.0);
+    (omega, Motion::new(Vec3::new(u[0], u[1], u[2]), Vec3::new(u[3], u[4], u[5])))
+}
+
 /// Max |analytic − central difference| over a matrix, relative to the matrix's scale.
 fn fd_error(
     model: &Model,
@@ -97,10 +105,7 @@ proptest! {
         let model = random_tree(seed, n);
         let (q, v, a) = state(seed, n);
         let fext = random_fext(&model, seed);
-        let mut rng = Rng(seed ^ 0x99);
-        let omega = rng.vec(n, -1.0, 1.0);
-        let u = rng.vec(6, -1.0, 1.0);
-        let u0 = Motion::new(Vec3::new(u[0], u[1], u[2]), Vec3::new(u[3], u[4], u[5]));
+        let (omega, u0) = random_weights(seed ^ 0x99, n);
         let subtrees = Subtrees::of(&model);
         let mut base = Data::new(&model);
         let mut grad = [vec![0.0; n], vec![0.0; n], vec![0.0; n]];
@@ -116,15 +121,15 @@ proptest! {
                 rnea_gradient(&model, &mut full, (&q1, &v1, &a), &G, Some(&fext), &omega, &u0, (eq, ev, ea));
                 let mut got = grad.clone();
                 let [oq, ov, oa] = &mut got;
-                rnea_gradient_moved(&model, (&base, &mut data), (&q1, &v1, &a), &G, Some(&fext), (&omega, &u0), (j, moved, &subtrees), (oq, ov, oa));
+                rnea_gradient_moved(&model, (&base, &mut data), (&q1, &v1, &a), Some(&fext), (&omega, &u0), (j, moved, &subtrees), (oq, ov, oa));
                 let scale = expect.iter().flatten().fold(1.0f64, |m, e| m.max(e.abs()));
                 for (g, e) in got.iter().flatten().zip(expect.iter().flatten()) {
                     prop_assert!((g - e).abs() <= 1e-12 * scale, "j {} {:?}: {} against {}", j, moved, g, e);
                 }
                 prop_assert!((&data.tau - &full.tau).amax() <= 1e-12 * scale);
                 prop_assert!((data.root_wrench.to_vec6() - full.root_wrench.to_vec6()).amax() <= 1e-12 * scale.max(full.root_wrench.to_vec6().amax()));
-                restore(&base, &mut data, j, &subtrees);
-                prop_assert!(data.tau == base.tau && data.oMi == base.oMi && data.G == base.G && data.f == base.f);
+                restore(&base, &mut data, (j, moved), &subtrees);
+                prop_assert!(data.tau == base.tau && data.oMi == base.oMi && data.S == base.S && data.v == base.v && data.G == base.G && data.f == base.f);
             }
         }
     }
@@ -137,10 +142,7 @@ proptest! {
         let mut data = Data::new(&model);
         let (q, v, a) = state(seed, n);
         let fext = random_fext(&model, seed);
-        let mut rng = Rng(seed ^ 0x77);
-        let omega = rng.vec(n, -1.0, 1.0);
-        let u = rng.vec(6, -1.0, 1.0);
-        let u0 = Motion::new(Vec3::new(u[0], u[1], u[2]), Vec3::new(u[3], u[4], u[5]));
+        let (omega, u0) = random_weights(seed ^ 0x77, n);
         let (mut g_q, mut g_v, mut g_a) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
         rnea_gradient(&model, &mut data, (&q, &v, &a), &G, Some(&fext), &omega, &u0, (&mut g_q, &mut g_v, &mut g_a));
         let tau = data.tau.clone();

@@ -18,6 +18,7 @@
 //! 36-DOF human (mean subtree six bodies, mean depth six) a pass visits a sixth of the tree.
 
 use super::kinematics::{body_acceleration, body_velocity, place_body};
+use super::point_force::path_dofs;
 use super::rnea::{body_force, ExternalForces};
 use super::rnea_derivatives::body_seed;
 use super::rnea_gradient::{backward_step, body_gradient};
@@ -46,24 +47,9 @@ impl Subtrees {
     /// The lists of `model` (one DOF per joint: the fixed-base case).
     pub fn of(model: &Model) -> Self {
         let nb = model.bodies.len();
-        let descends = |mut i: usize, from: usize| {
-            while i > from {
-                i = model.joints[i].parent;
-            }
-            i == from
-        };
-        let below = (1..nb).map(|j| (j..nb).filter(|&i| descends(i, j)).collect()).collect();
-        let above = (1..nb)
-            .map(|j| {
-                let mut chain = Vec::new();
-                let mut a = model.joints[j].parent;
-                while a > 0 {
-                    chain.push(a);
-                    a = model.joints[a].parent;
-                }
-                chain
-            })
-            .collect();
+        let below = (1..nb).map(|j| (j..nb).filter(|&i| model.is_ancestor_or_self(j, i)).collect()).collect();
+        // The strict ancestors nearest first: the root path of the parent, reversed, as bodies.
+        let above = (1..nb).map(|j| path_dofs(model, model.parent(j)).into_iter().rev().map(|d| d + 1).collect()).collect();
         Subtrees { below, above }
     }
 
@@ -73,17 +59,15 @@ impl Subtrees {
     }
 }
 
-/// `∇φ` (as [`super::rnea_gradient::rnea_gradient`]) at `(q, q̇, q̈)`, which differs from the state of `base`
+/// `∇φ` (as [`super::rnea_gradient::rnea_gradient`]; gravity as in `base`) at `(q, q̇, q̈)`, which differs from the state of `base`
 /// (a full pass, its gradient in `base_gradient`) in `q_j` or `q̇_j` only. `data` must hold `base`'s values on
 /// every body on entry (restore with [`restore`]); the gradient's entries of the subtree and the ancestors
 /// of `j` are written into `g_q`, `g_v`, `g_a`, the others must hold `base_gradient` already. `τ` and the root
 /// wrench in `data` as [`super::rnea::rnea`] leaves them.
-#[allow(clippy::too_many_arguments)]
 pub fn rnea_gradient_moved(
     model: &Model,
     (base, data): (&Data, &mut Data),
     (q, v, a): (&[f64], &[f64], &[f64]),
-    _gravity: &Vec3,
     fext: ExternalForces,
     (omega, u0): (&[f64], &Motion),
     (j, moved, subtrees): (usize, Moved, &Subtrees),
@@ -136,10 +120,11 @@ pub fn rnea_gradient_moved(
     data.root_wrench = data.f[0];
 }
 
-/// Puts `base`'s values back into `data` on the bodies a pass for DOF `j` wrote (and `τ` there).
-pub fn restore(base: &Data, data: &mut Data, j: usize, subtrees: &Subtrees) {
+/// Puts `base`'s values back into `data` on the bodies a pass for DOF `j` wrote (and `τ` there); after a
+/// moved `q̇_j` the placements were not written.
+pub fn restore(base: &Data, data: &mut Data, (j, moved): (usize, Moved), subtrees: &Subtrees) {
     for i in subtrees.touched(j) {
-        copy_body(base, data, i);
+        copy_body(base, data, i, moved == Moved::Position);
     }
     data.root_wrench = base.root_wrench;
 }
@@ -147,16 +132,19 @@ pub fn restore(base: &Data, data: &mut Data, j: usize, subtrees: &Subtrees) {
 /// Keeps a full pass's values of every body (and `τ`, the root wrench) as the base of the moved passes.
 pub fn keep_as_base(data: &Data, base: &mut Data) {
     for i in 0..data.oMi.len() {
-        copy_body(data, base, i);
+        copy_body(data, base, i, true);
     }
     base.root_wrench = data.root_wrench;
 }
 
-/// Body `i`'s quantities of a gradient pass (and `τ` of its joint) from `from` into `to`.
-fn copy_body(from: &Data, to: &mut Data, i: usize) {
-    to.oMi[i] = from.oMi[i];
-    to.S[i] = from.S[i];
-    to.oI[i] = from.oI[i];
+/// Body `i`'s quantities of a gradient pass (and `τ` of its joint) from `from` into `to`; its placement, axis
+/// and world inertia too with `placements`.
+fn copy_body(from: &Data, to: &mut Data, i: usize, placements: bool) {
+    if placements {
+        to.oMi[i] = from.oMi[i];
+        to.S[i] = from.S[i];
+        to.oI[i] = from.oI[i];
+    }
     to.v[i] = from.v[i];
     to.a[i] = from.a[i];
     to.Sdot[i] = from.Sdot[i];

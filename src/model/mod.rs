@@ -348,13 +348,8 @@ impl Model {
     /// subtree (RNEA: `τ_i = S_iᵀ Σ_{b ∈ subtree(i)} f_b`, each `f_b` a function of the joints from the root
     /// to `b`; loads at a body point add `J_bᵀ f` along the same path).
     pub fn torque_dofs(&self, i: usize) -> Vec<usize> {
-        let descends = |mut j: usize, from: usize| {
-            while j > from {
-                j = self.joints[j].parent;
-            }
-            j == from
-        };
-        (0..self.nv()).filter(|&j| descends(j + 1, i + 1) || descends(i + 1, j + 1)).collect()
+        let related = |j: usize| self.is_ancestor_or_self(i + 1, j + 1) || self.is_ancestor_or_self(j + 1, i + 1);
+        (0..self.nv()).filter(|&j| related(j)).collect()
     }
 
     /// The body `joints[i]` hangs from.

@@ -202,7 +202,7 @@ impl Transcription<'_> {
             let moved = if j < nv { (j, Moved::Position) } else { (j - nv, Moved::Velocity) };
             self.node_gradient(&mut perturbed, if free { Pass::Full { placed: j > nv } } else { Pass::Moved(moved.0, moved.1) });
             if !free {
-                restore(&self.hess.base, &mut self.data, moved.0, &self.hess.subtrees);
+                restore(&self.hess.base, &mut self.data, moved, &self.hess.subtrees);
             }
             // Column j (a q or q̇ column), and row j by symmetry for the q̈ and λ columns.
             for i in 0..d {

@@ -68,7 +68,7 @@ impl Transcription<'_> {
             Pass::Full { placed: false } | Pass::Base => rnea_gradient(model, data, z, gravity, None, omega, u0, (g_q, g_v, g_a)),
             Pass::Moved(j, moved) => {
                 let engine = (&h.base, &mut *data);
-                rnea_gradient_moved(model, engine, z, gravity, None, (omega, u0), (j, moved, &h.subtrees), (g_q, g_v, g_a))
+                rnea_gradient_moved(model, engine, z, None, (omega, u0), (j, moved, &h.subtrees), (g_q, g_v, g_a))
             }
         }
         if pass == Pass::Base {
