@@ -102,6 +102,27 @@ impl SymmetricMatrix {
         true
     }
 
+    /// `A[i][j + k] += values[k]` (and the symmetric entries): a run of one row's consecutive columns. In
+    /// the lower triangle and the band (`j + len − 1 ≤ i ≤ j + bandwidth`) the run is contiguous in the
+    /// band's storage; elsewhere entry by entry, outside the band dropped as by [`Self::add`].
+    pub fn add_row_run(&mut self, i: usize, j: usize, values: &[f64]) {
+        if values.is_empty() {
+            return;
+        }
+        let bandwidth = self.bandwidth();
+        match &mut self.storage {
+            Storage::Banded { band, .. } if j + values.len() <= i + 1 && i - j <= bandwidth && i < self.n => {
+                let start = i * (bandwidth + 1) + (j + bandwidth - i);
+                band[start..start + values.len()].iter_mut().zip(values).for_each(|(a, v)| *a += v);
+            }
+            _ => {
+                for (k, &v) in values.iter().enumerate() {
+                    self.add(i, j + k, v);
+                }
+            }
+        }
+    }
+
     /// Adds to lower-triangle entry `(i, j)`, `i ≥ j`, known to be inside the band.
     pub(crate) fn add_unchecked(&mut self, i: usize, j: usize, value: f64) {
         debug_assert!(i >= j && i - j <= self.bandwidth());
@@ -232,6 +253,23 @@ mod tests {
             a.mul_vec(&x, &mut y);
             let ye = &dense * nalgebra::DVector::from_column_slice(&x);
             assert!((nalgebra::DVector::from_column_slice(&y) - ye).amax() < 1e-12 * (1.0 + expect.amax()));
+        }
+    }
+
+    /// A run of a row's columns lands where entry-by-entry `add` puts it: inside the band (contiguous), across
+    /// the diagonal or the band's edge (entry by entry, outside dropped), and in dense storage.
+    #[test]
+    fn a_row_run_is_its_entries() {
+        for banded in [true, false] {
+            for (i, j, len) in [(9, 4, 6), (9, 3, 3), (9, 7, 5), (4, 6, 3), (9, 0, 2), (2, 2, 0)] {
+                let (mut run, mut entries) = (test_matrix(12, 5, banded), test_matrix(12, 5, banded));
+                let values: Vec<f64> = (0..len).map(|k| 0.25 + k as f64).collect();
+                run.add_row_run(i, j, &values);
+                for (k, &v) in values.iter().enumerate() {
+                    entries.add(i, j + k, v);
+                }
+                assert_eq!(run.to_dense(), entries.to_dense(), "banded {banded}, row {i} from column {j}, {len} entries");
+            }
         }
     }
 
