@@ -113,11 +113,22 @@ pub(crate) struct Assessment {
 pub(crate) fn assess_at(
     eval: &Evaluation,
     scales: &Scales,
-    [lambda, mu]: [&[f64]; 2],
+    multipliers: [&[f64]; 2],
     gradient: &mut [f64],
     settings: &Settings,
 ) -> Assessment {
     eval.jr.tr_mul_vec(&eval.r, gradient);
+    assess_from(eval, scales, multipliers, gradient, settings)
+}
+
+/// [`assess_at`] with `gradient` holding `∇F = Jᵣᵀr` at `eval` already (the interior point keeps it).
+pub(crate) fn assess_from(
+    eval: &Evaluation,
+    scales: &Scales,
+    [lambda, mu]: [&[f64]; 2],
+    gradient: &mut [f64],
+    settings: &Settings,
+) -> Assessment {
     eval.jg.tr_mul_vec_add(1.0, lambda, gradient);
     eval.jh.tr_mul_vec_add(1.0, mu, gradient);
     let objective = eval.objective();

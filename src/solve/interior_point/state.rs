@@ -4,7 +4,7 @@
 use std::time::{Duration, Instant};
 
 use super::relaxed;
-use crate::solve::auglag::{assess_at, checked_setup, stopped_at_start, violation_at, Assessment};
+use crate::solve::auglag::{assess_from, checked_setup, stopped_at_start, violation_at, Assessment};
 use crate::solve::linalg::{Cholesky, SymmetricMatrix};
 use crate::solve::line_search::{norm_inf, EvalError};
 use crate::solve::problem::{
@@ -219,7 +219,9 @@ impl<'a> Ipm<'a> {
     /// The documented convergence test at `x` with `λ = v/s_g`, `μ_eq = y/s_h` (leaves `∇ₓℓ` in `gradient`).
     pub(super) fn assess(&mut self, settings: &Settings) -> Assessment {
         self.lagrangian_weights();
-        assess_at(&self.eval, &self.scales, [&self.work_g, &self.work_h], &mut self.gradient, settings)
+        // ∇ₓℓ from ∇F = Jᵣᵀr, computed with the evaluation's Jacobians (`evaluate_at`).
+        self.gradient.copy_from_slice(&self.grad_f);
+        assess_from(&self.eval, &self.scales, [&self.work_g, &self.work_h], &mut self.gradient, settings)
     }
 
     /// `work_h = y/s_h`, `work_g = v/s_g`: the weights of `∇ĥ`, `∇ĝ` in the Lagrangian's gradient (the
