@@ -13,6 +13,11 @@ const DELTA_FIRST: f64 = 1e-8;
 const DELTA_GROWTH: f64 = 10.0;
 const DELTA_DECAY: f64 = 1.0 / 3.0;
 const DELTA_MAX: f64 = 1e20;
+/// A step the line search cut below this fraction, on the exact model: the next step starts from the same
+/// `δ` instead of a third of it (the model over-predicted; a full-curvature step would be cut again). Default
+/// plans of the 35 tasks 3237 → 2961 iterations (the 36-DOF crouch 559 → 212), the push-up at N = 32 162 → 80;
+/// keeping `δ` ×10 instead stalled the push-up at N = 31, 32 (docs/performance.md).
+const DELTA_KEPT_BELOW: f64 = 0.5;
 /// `δ_c = 1/ρ` of the equalities, relative to the largest diagonal entry of `JᵣᵀJᵣ` at the start. The
 /// multipliers' step `dy = ρ(Jĥ dx + ĥ)` carries `ρ` times the residual's rounding: at 10⁻⁸ that noise
 /// (|dy| ≈ 10⁵ at the push-up's optimum) kept the stationarity test from ever holding; at 10⁻⁴ the
@@ -55,7 +60,9 @@ impl Ipm<'_> {
             self.constraint_residuals();
             self.direction();
             if let Some(alpha) = self.filter_line_search()? {
-                self.delta = delta;
+                let kept = alpha < DELTA_KEPT_BELOW && self.exact_in_use();
+                // ×3 undoes the next step's decay by a third (DELTA_DECAY).
+                self.delta = if kept { delta.max(DELTA_FIRST) * 3.0 } else { delta };
                 self.accept(alpha)?;
                 return Ok(true);
             }
@@ -132,6 +139,11 @@ impl Ipm<'_> {
             (_, Some(secant)) => secant.add_to(&mut self.matrix),
             _ => {}
         }
+    }
+
+    /// Whether this step's matrix holds the problem's exact second-order term.
+    fn exact_in_use(&self) -> bool {
+        self.exact == Some(true) && self.term.is_some() && self.iterations >= self.gauss_newton_first
     }
 
     /// Factorises the matrix plus `δ·diag`; `false` if it is not positive definite.
