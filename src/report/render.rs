@@ -50,8 +50,12 @@ fn preferred_fonts(dirs: &[PathBuf]) -> Option<usvg::fontdb::Database> {
     let (family, files) = PREFERRED.iter().find(|(_, files)| found.contains_key(files[0]))?;
     let mut db = usvg::fontdb::Database::new();
     for path in files.iter().filter_map(|f| found.get(*f)) {
+        // Held in memory: a face loaded by its path is read from the file again at every use (every text
+        // element's outlines; fontdb without its `memmap` feature), which took a tenth of a small plan's process.
         // A file that is not a font is skipped; the regular one must load.
-        let _ = db.load_font_file(path);
+        if let Ok(data) = std::fs::read(path) {
+            db.load_font_data(data);
+        }
     }
     if db.is_empty() {
         return None;
