@@ -134,14 +134,15 @@ impl Ipm<'_> {
                 self.start_secant();
             }
         }
-        match (&self.term, &self.secant) {
-            (Some(term), _) if self.exact == Some(true) => self.matrix.add_matrix(term),
-            (_, Some(secant)) => secant.add_to(&mut self.matrix),
-            _ => {}
+        if self.exact_in_use() {
+            self.matrix.add_matrix(self.term.as_ref().expect("exact_in_use: the term is kept"));
+        } else if let Some(secant) = &self.secant {
+            secant.add_to(&mut self.matrix);
         }
     }
 
-    /// Whether this step's matrix holds the problem's exact second-order term.
+    /// Whether this step's matrix holds the problem's exact second-order term ([`Self::assemble`] adds it by
+    /// this test, and the damping's rule after a cut step reads it).
     fn exact_in_use(&self) -> bool {
         self.exact == Some(true) && self.term.is_some() && self.iterations >= self.gauss_newton_first
     }
