@@ -136,27 +136,22 @@ pub fn svg_to_png(svg: &str, zoom: f32, what: &str) -> Result<Vec<u8>> {
     encode_png(pixmap).map_err(|e| fail("png", e.to_string()))
 }
 
-/// The pixmap as an 8-bit PNG, RGB when every pixel is opaque (the pictures paint their own background),
-/// compressed by `fdeflate` (png's `Fast`, adaptive filters): png's default `Balanced` deflate of RGBA took 40
-/// of the 100 ms a pendulum plan's whole process took; the pendulum's filmstrip is 162 kB instead of 75 kB.
+/// The pixmap, opaque (painted over white by [`svg_to_png`]), as an 8-bit RGB PNG compressed by `fdeflate`
+/// (png's `Fast`, adaptive filters): png's default `Balanced` deflate of RGBA took 40 of the 100 ms a pendulum
+/// plan's whole process took; the pendulum's filmstrip is 162 kB instead of 75 kB.
 fn encode_png(pixmap: tiny_skia::Pixmap) -> std::result::Result<Vec<u8>, png::EncodingError> {
     let (width, height) = (pixmap.width(), pixmap.height());
-    // tiny-skia keeps premultiplied alpha; PNG stores straight alpha (the same where opaque).
-    let mut data = pixmap.take_demultiplied();
-    let opaque = data.chunks_exact(4).all(|p| p[3] == 255);
-    let color = if opaque {
-        let n = data.len() / 4;
-        for i in 0..n {
-            data.copy_within(4 * i..4 * i + 3, 3 * i);
-        }
-        data.truncate(3 * n);
-        png::ColorType::Rgb
-    } else {
-        png::ColorType::Rgba
-    };
+    // Opaque: premultiplied and straight colours are the same, the alpha channel is dropped.
+    let mut data = pixmap.take();
+    debug_assert!(data.chunks_exact(4).all(|p| p[3] == 255), "painted over white");
+    let n = data.len() / 4;
+    for i in 0..n {
+        data.copy_within(4 * i..4 * i + 3, 3 * i);
+    }
+    data.truncate(3 * n);
     let mut bytes = Vec::new();
     let mut encoder = png::Encoder::new(&mut bytes, width, height);
-    encoder.set_color(color);
+    encoder.set_color(png::ColorType::Rgb);
     encoder.set_depth(png::BitDepth::Eight);
     encoder.set_compression(png::Compression::Fast);
     encoder.write_header()?.write_image_data(&data)?;
