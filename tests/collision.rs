@@ -1,12 +1,13 @@
-//! Solid bodies: signed distances against brute force, the collision rows' Jacobians and second-order
-//! term against finite differences, bad obstacles and collision pairs refused naming the field, and the
-//! dip-down kept off its bar (while the same task without the constraint goes through it).
+//! Solid bodies in a plan: the collision rows' Jacobians and second-order term against finite differences,
+//! bad obstacles and collision pairs refused naming the field, and the dip-down kept off its bar (while the
+//! same task without the constraint goes through it). The distances themselves: `tests/distances.rs`.
 
 mod common;
 
+use common::solids::{obstacles, random_capsule};
 use common::{random_tree, Rng};
 use mintorque::dynamics::{kinematics, Data};
-use mintorque::geometry::{capsule_capsule, capsule_obstacle, rotation_xyz_degrees, Capsule, Obstacle, ObstacleShape};
+use mintorque::geometry::{capsule_capsule, capsule_obstacle, Capsule, ObstacleShape};
 use mintorque::plan::task::Task;
 use mintorque::plan::{Collider, Collision, Spec, Transcription};
 use mintorque::solve::{ConstraintKind, Evaluation, Problem, SymmetricMatrix};
@@ -15,114 +16,6 @@ use std::path::PathBuf;
 
 fn repo() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
-
-fn random_capsule(rng: &mut Rng, spread: f64) -> Capsule {
-    let v = |rng: &mut Rng| Vec3::new(rng.uniform(-spread, spread), rng.uniform(-spread, spread), rng.uniform(-spread, spread));
-    Capsule { a: v(rng), b: v(rng), radius: rng.uniform(0.01, 0.1) }
-}
-
-/// One obstacle of every kind (an infinite and a finite cylinder, a rotated box, a tilted plane).
-fn obstacles() -> Vec<Obstacle> {
-    let shapes = [
-        ObstacleShape::Plane { point: Vec3::new(0.0, 0.0, -0.9), normal: Vec3::new(0.1, -0.2, 1.0).normalize() },
-        ObstacleShape::Cylinder {
-            point: Vec3::new(0.1, 0.0, 0.2),
-            direction: Vec3::new(0.3, 1.0, 0.1).normalize(),
-            radius: 0.03,
-            length: None,
-        },
-        ObstacleShape::Cylinder {
-            point: Vec3::new(-0.2, 0.3, -0.1),
-            direction: Vec3::new(1.0, 0.2, -0.4).normalize(),
-            radius: 0.12,
-            length: Some(0.4),
-        },
-        ObstacleShape::Box {
-            centre: Vec3::new(0.3, -0.2, 0.1),
-            rotation: rotation_xyz_degrees(&[20.0, -35.0, 50.0]),
-            half: Vec3::new(0.2, 0.1, 0.15),
-        },
-    ];
-    shapes.into_iter().enumerate().map(|(k, shape)| Obstacle { name: format!("o{k}"), shape, zone: false }).collect()
-}
-
-/// `min_t sd(a + t(b − a)) − r` by sampling `t` finely.
-fn brute_capsule_obstacle(c: &Capsule, o: &ObstacleShape) -> f64 {
-    let n = 20_000;
-    (0..=n).map(|k| o.point_distance(&(c.a + (c.b - c.a) * (k as f64 / n as f64))).0).fold(f64::INFINITY, f64::min) - c.radius
-}
-
-#[test]
-fn capsule_obstacle_distances_match_brute_force() {
-    let mut rng = Rng(3);
-    for o in obstacles() {
-        for _ in 0..200 {
-            let c = random_capsule(&mut rng, 0.6);
-            let sep = capsule_obstacle(&c, &o.shape);
-            let brute = brute_capsule_obstacle(&c, &o.shape);
-            // Sampling misses the least value by at most a step times the slope (|∇sd| = 1).
-            let step = (c.b - c.a).norm() / 20_000.0;
-            assert!(sep.distance <= brute + 1e-12, "{}: {} by bisection, {brute} by sampling", o.name, sep.distance);
-            assert!(sep.distance > brute - step - 1e-12, "{}: {} by bisection, {brute} by sampling", o.name, sep.distance);
-            // The witnesses: on the obstacle's surface, |d + r| apart.
-            assert!(o.shape.point_distance(&sep.on_b).0.abs() < 1e-9);
-            assert!(((sep.on_a - sep.on_b).norm() - (sep.distance + c.radius).abs()).abs() < 1e-9);
-        }
-    }
-}
-
-#[test]
-fn point_distances_of_known_cases() {
-    let floor = ObstacleShape::Plane { point: Vec3::zeros(), normal: Vec3::z() };
-    let bar = ObstacleShape::Cylinder { point: Vec3::zeros(), direction: Vec3::y(), radius: 0.02, length: Some(1.0) };
-    let table = ObstacleShape::Box {
-        centre: Vec3::zeros(),
-        rotation: rotation_xyz_degrees(&[0.0, 0.0, 90.0]),
-        half: Vec3::new(0.5, 0.2, 0.1),
-    };
-    let cases = [
-        (&floor, Vec3::new(3.0, -2.0, 0.25), 0.25),
-        (&floor, Vec3::new(0.0, 0.0, -0.1), -0.1),
-        (&bar, Vec3::new(0.0, 0.3, 0.12), 0.10),
-        (&bar, Vec3::new(0.0, 0.8, 0.0), 0.3),      // beyond the end cap
-        (&bar, Vec3::new(0.0, 0.0, 0.005), -0.015), // inside, nearest the side
-        (&table, Vec3::new(0.0, 0.0, 0.3), 0.2),
-        (&table, Vec3::new(0.3, 0.0, 0.0), 0.1), // turned 90° about z: the 0.2 half-width along x
-        (&table, Vec3::new(0.0, 0.45, 0.05), -0.05), // inside, nearest the top
-    ];
-    for (shape, p, want) in cases {
-        let (d, n) = shape.point_distance(&p);
-        assert!((d - want).abs() < 1e-12, "{shape:?} at {p:?}: {d}, want {want}");
-        assert!((n.norm() - 1.0).abs() < 1e-12);
-    }
-}
-
-#[test]
-fn capsule_capsule_distances_match_brute_force_with_parallel_and_crossing_segments() {
-    let mut rng = Rng(5);
-    let mut cases: Vec<(Capsule, Capsule)> =
-        (0..60).map(|_| (random_capsule(&mut rng, 0.5), random_capsule(&mut rng, 0.5))).collect();
-    let seg = |a: [f64; 3], b: [f64; 3]| Capsule { a: Vec3::from(a), b: Vec3::from(b), radius: 0.05 };
-    cases.push((seg([0.0, 0.0, 0.0], [1.0, 0.0, 0.0]), seg([0.5, 0.3, 0.0], [1.5, 0.3, 0.0]))); // parallel, overlapping
-    cases.push((seg([0.0, 0.0, 0.0], [1.0, 0.0, 0.0]), seg([2.0, 0.3, 0.0], [3.0, 0.3, 0.0]))); // parallel, apart
-    cases.push((seg([0.0, 0.0, 0.0], [1.0, 0.0, 0.0]), seg([0.5, -0.5, 0.0], [0.5, 0.5, 0.0]))); // crossing
-    cases.push((seg([0.2, 0.1, 0.0], [0.2, 0.1, 0.0]), seg([0.0, 0.0, 0.0], [1.0, 0.0, 0.0]))); // a sphere
-    for (c1, c2) in cases {
-        let sep = capsule_capsule(&c1, &c2);
-        let n = 1500;
-        let mut brute = f64::INFINITY;
-        for i in 0..=n {
-            let p = c1.a + (c1.b - c1.a) * (i as f64 / n as f64);
-            for j in 0..=n {
-                brute = brute.min((p - (c2.a + (c2.b - c2.a) * (j as f64 / n as f64))).norm());
-            }
-        }
-        brute -= c1.radius + c2.radius;
-        assert!((sep.distance - brute).abs() < 2e-3 * (c1.b - c1.a).norm().max(0.1), "{}, brute {brute}", sep.distance);
-        assert!(sep.distance <= brute + 1e-12, "closest points not closest: {} > {brute}", sep.distance);
-        assert!(sep.normal.iter().all(|x| x.is_finite()) && (sep.normal.norm() - 1.0).abs() < 1e-12);
-    }
 }
 
 /// A random tree with a random capsule on every body, the four obstacles, every body kept from every

@@ -8,8 +8,10 @@
 //! J_b(p_b))` exact wherever the witnesses are unique: the derivative of the minimising parameter drops out.
 //! Penetration gives a negative `d` (a signed distance), so values and gradients stay finite across contact.
 
+mod segments;
 mod shapes;
 
+pub use segments::{capsule_capsule, capsule_capsule_rounded, ROUNDING};
 pub use shapes::capsules_of_shapes;
 
 use crate::spatial::{Mat3, Transform, Vec3};
@@ -89,7 +91,8 @@ pub struct Separation {
     /// Separation direction, from the second shape towards the first: `∂d/∂p_a = n`, `∂d/∂p_b = −n`. A
     /// unit vector, except for a segment deep inside a box or finite cylinder whose nearest point sits
     /// on a crease of the signed distance (where the nearest face changes): there the combination of the
-    /// two faces' normals that keeps the minimum (shorter than 1).
+    /// two faces' normals that keeps the minimum (shorter than 1); and for [`capsule_capsule_rounded`], the
+    /// gap over the rounded distance (a little longer than 1).
     pub normal: Vec3,
 }
 
@@ -181,58 +184,6 @@ pub fn capsule_obstacle(c: &Capsule, o: &ObstacleShape) -> Separation {
     let p = at(t);
     let (sd, surface_normal) = o.point_distance(&p);
     Separation { distance: sd - c.radius, on_a: p, on_b: p - surface_normal * sd, normal: n }
-}
-
-/// The signed distance between two capsules (world): `‖p_a − p_b‖ − r_a − r_b`, `p_a`, `p_b` the closest
-/// points of the segments (Ericson, *Real-Time Collision Detection*, 5.1.9; parallel segments take the
-/// end of the overlap nearest `a`'s first end). Crossing axes (`p_a = p_b`) take `n` across both axes.
-pub fn capsule_capsule(c1: &Capsule, c2: &Capsule) -> Separation {
-    let (s, t) = closest_parameters(c1, c2);
-    let p1 = c1.a + (c1.b - c1.a) * s;
-    let p2 = c2.a + (c2.b - c2.a) * t;
-    let gap = p1 - p2;
-    let len = gap.norm();
-    let normal = if len > 1e-12 {
-        gap / len
-    } else {
-        let across = (c1.b - c1.a).cross(&(c2.b - c2.a));
-        if across.norm() > 1e-12 {
-            across.normalize()
-        } else {
-            crate::plan::spec::perpendicular_pair(&(c1.b - c1.a + Vec3::new(0.0, 0.0, 1e-30)).normalize()).0
-        }
-    };
-    Separation { distance: len - c1.radius - c2.radius, on_a: p1, on_b: p2, normal }
-}
-
-/// The parameters `(s, t) ∈ [0, 1]²` of the closest points of two segments.
-fn closest_parameters(c1: &Capsule, c2: &Capsule) -> (f64, f64) {
-    let (d1, d2, r) = (c1.b - c1.a, c2.b - c2.a, c1.a - c2.a);
-    let (a, e, f) = (d1.norm_squared(), d2.norm_squared(), d2.dot(&r));
-    const TINY: f64 = 1e-24;
-    if a <= TINY && e <= TINY {
-        return (0.0, 0.0);
-    }
-    if a <= TINY {
-        return (0.0, (f / e).clamp(0.0, 1.0));
-    }
-    let c = d1.dot(&r);
-    if e <= TINY {
-        return ((-c / a).clamp(0.0, 1.0), 0.0);
-    }
-    let b = d1.dot(&d2);
-    // s minimises over the infinite lines (0 when parallel), then t follows, then s is re-clamped.
-    let denom = a * e - b * b;
-    let mut s = if denom > 1e-12 * a * e { ((b * f - c * e) / denom).clamp(0.0, 1.0) } else { 0.0 };
-    let mut t = (b * s + f) / e;
-    if t < 0.0 {
-        t = 0.0;
-        s = (-c / a).clamp(0.0, 1.0);
-    } else if t > 1.0 {
-        t = 1.0;
-        s = ((b - c) / a).clamp(0.0, 1.0);
-    }
-    (s, t)
 }
 
 /// A rotation from angles about the world x, then y, then z axes (degrees): `R = R_z R_y R_x`.

@@ -8,10 +8,10 @@
 //! **Status** (docs/performance.md, "The interior point as the default"): with the automatic starts it
 //! converges on all 35 tasks of the benchmark (27 examples, 8 peer tasks) and reaches F ≤ 1.001 × IPOPT's
 //! on every peer task. From one start it converges by itself on 30 of the 31 tasks that use it (4 examples
-//! choose another solver in their task files); the weight lift in space stalls at its first barrier value
-//! (its palms' collision rows are kinked where the capsules turn parallel) and the structured solver
-//! finishes it from where it stopped (`plan/run.rs`). The push-up's closed loop converges at every N from 12
-//! to 32.
+//! choose another solver in their task files); the 36-DOF crouch stalls at its first barrier value and the
+//! structured solver finishes it from where it stopped (`plan/run.rs`). (The weight lift in space
+//! stalled too, until its collision rows were rounded where the capsules turn parallel: `geometry`.) The
+//! push-up's closed loop converges at every N from 12 to 32.
 //!
 //! # The barrier subproblem
 //!

@@ -7,6 +7,7 @@ pub mod momentum;
 pub mod opensim;
 pub mod opensim_coupled;
 pub mod osim_states;
+pub mod solids;
 
 use std::path::PathBuf;
 

@@ -1,12 +1,13 @@
 //! Distance constraints between solid bodies: for every collision capsule pair of a
 //! [`crate::plan::spec::Collision`], the row `margin − d(q) ≤ 0` at each node, `d` the signed distance of
-//! [`crate::geometry`], with its exact gradient `∂d/∂q = nᵀ(J_a(p_a) − J_b(p_b))` (the witness points'
+//! [`crate::geometry`] (between two capsules the rounded one, [`capsule_capsule_rounded`]: no kink where
+//! their segments turn parallel), with its exact gradient `∂d/∂q = nᵀ(J_a(p_a) − J_b(p_b))` (the witness points'
 //! Jacobians; the envelope theorem) — obstacles do not move, so `J_b = 0` for them.
 
 use super::{Derivatives, Transcription};
 use crate::dynamics::point_force::{path_dofs, point_jacobian};
 use crate::dynamics::{kinematics, Data};
-use crate::geometry::{capsule_capsule, capsule_obstacle, Capsule, Separation};
+use crate::geometry::{capsule_capsule_rounded, capsule_obstacle, Capsule, Separation};
 use crate::plan::spec::{Collider, Spec};
 use crate::spatial::Vec3;
 
@@ -117,7 +118,7 @@ impl Collisions {
         let a = pair.capsule.transformed(&data.oMi[pair.body]);
         match &pair.other {
             Other::Obstacle(o) => capsule_obstacle(&a, &spec.obstacles[*o].shape),
-            Other::Capsule { body, capsule, .. } => capsule_capsule(&a, &capsule.transformed(&data.oMi[*body])),
+            Other::Capsule { body, capsule, .. } => capsule_capsule_rounded(&a, &capsule.transformed(&data.oMi[*body])),
         }
     }
 
