@@ -51,6 +51,35 @@ fn multistart_is_deterministic_and_never_worse_than_one_start() {
     assert_ne!(other_seed.starts[1].objective, a.starts[1].objective, "another seed perturbs differently");
 }
 
+/// The automatic starts' rounds give the same plan on one thread as on several: on one the rounds run one
+/// start after another; on four the next round's starts begin ahead of time, while the first round's run,
+/// and are stopped and dropped where the first round ends the solve. The push-up's rounds (its second start
+/// stalls, unpolished: a decision waiting for the round) and the double pendulum's (two rounds: its first
+/// two starts disagree) are the same start by start, and the plan bit for bit.
+#[test]
+fn the_rounds_give_the_same_plan_on_one_thread_and_on_four() {
+    for example in ["double_pendulum", "push_up"] {
+        let t = task(example);
+        let on = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            pool.install(|| plan::plan_with_starts(&t.spec, t.solver, &t.settings, &MultiStart::default(), &mut |_| {}).unwrap())
+        };
+        let (one, four) = (on(1), on(4));
+        assert_eq!(one.x, four.x, "{example}");
+        assert_eq!(one.best_start, four.best_start, "{example}");
+        let report = |p: &plan::Plan| {
+            p.starts.iter().map(|s| (s.objective, s.iterations, s.polished, s.polish_skipped.clone())).collect::<Vec<_>>()
+        };
+        assert_eq!(report(&one), report(&four), "{example}");
+        assert!(one.converged(), "{example}");
+        // The paths the test is about: the double pendulum's second round, the push-up's unpolished start.
+        match example {
+            "double_pendulum" => assert_eq!(one.starts.len(), 4),
+            _ => assert!(one.starts.iter().any(|s| s.polish_skipped.is_some()), "{:?}", one.starts),
+        }
+    }
+}
+
 /// A start that stalls far above a converged one is not polished: the push-up's second start stalls at
 /// more than `HOPELESS` (2) times the first's effort; it is reported stalled and unpolished (its polish took
 /// 516 iterations to land 0.003 % below the first), the next round runs instead, and the plan is the

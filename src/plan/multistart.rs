@@ -20,15 +20,19 @@
 //! A round first runs every start's solver; a start (not the first) that stalled at more than
 //! [`HOPELESS`] times the least effort a converged start has reached is then left unpolished — its polish
 //! (the structured solver from where it stopped) costs hundreds of iterations to land, at best, in a basin
-//! already found — and counts as not converged; the others are polished where they stalled.
+//! already found — and counts as not converged; the others are polished where they stalled. On the threads
+//! ([`rounds`]) a start that did not stall is finished at once, and a thread left idle by a fast start
+//! begins the next round's starts ahead of time (stopped and dropped if the round ends the solve): the same
+//! plan, sooner.
 
 mod perturb;
+mod rounds;
 
-use super::run::{Run, Started};
+pub(super) use rounds::run_rounds;
+
+use super::run::Run;
 use super::{Spec, Transcription};
 use crate::error::{Error, Result};
-use crate::solve::Progress;
-use rayon::prelude::*;
 
 /// Two converged starts whose efforts differ by less than this fraction of the least have found the same
 /// optimum (0.1 %: the bar for "as good as IPOPT's").
@@ -216,86 +220,11 @@ pub(super) fn guesses(spec: &Spec, problem: &mut Transcription, x0: &[f64], mult
 /// stalled at 4.3× the first's 1531.9 and its polish took 516 more iterations to land 0.003 % below it.
 pub const HOPELESS: f64 = 2.0;
 
-/// Runs the starts from the guesses round by round, `multi.starts` at a time, until the rounds end
-/// ([`MultiStart::up_to`], [`agreed`]) or the guesses do. A round runs every start's first phase (`first`)
-/// in parallel, then decides which stalled ones to polish ([`HOPELESS`]; `stalled` says whether one stalled)
-/// and finishes them all (`finish`) in parallel — the decision waits for the whole round, so the plan is the
-/// same on any number of threads. The first start runs on this thread with `observer`.
-pub(super) fn run_rounds<'s, F, P, W>(
-    guesses: &[Vec<f64>],
-    multi: &MultiStart,
-    observer: &mut dyn FnMut(&Progress),
-    first: F,
-    finish: P,
-    stalled: W,
-) -> Result<Vec<Run>>
-where
-    F: Fn(&[f64], &mut dyn FnMut(&Progress)) -> Result<Started<'s>> + Sync,
-    P: Fn(Started<'s>, bool, &mut dyn FnMut(&Progress)) -> Run + Sync,
-    W: Fn(&Started<'s>) -> bool,
-{
-    let round = multi.starts.max(1);
-    let mut runs: Vec<Run> = Vec::new();
-    let mut quiet = |_: &Progress| {};
-    while runs.len() < guesses.len() && (runs.is_empty() || !agreed(&runs)) {
-        let next: Vec<&[f64]> = guesses[runs.len()..(runs.len() + round).min(guesses.len())].iter().map(|g| &g[..]).collect();
-        let observer: &mut dyn FnMut(&Progress) = if runs.is_empty() { &mut *observer } else { &mut quiet };
-        let firsts = on_pool(next, &mut *observer, |x, o| first(x, o)).into_iter().collect::<Result<Vec<_>>>()?;
-        let least = runs
-            .iter()
-            .map(|r| &r.outcome)
-            .chain(firsts.iter().map(|f| &f.outcome))
-            .filter(|o| o.converged && o.objective.is_finite())
-            .map(|o| o.objective)
-            .min_by(f64::total_cmp);
-        let offset = runs.len();
-        // Why start `offset + i` is not polished, if it is not.
-        let skip: Vec<Option<String>> = firsts
-            .iter()
-            .enumerate()
-            .map(|(i, f)| match least {
-                Some(l) if offset + i > 0 && stalled(f) && f.outcome.objective > HOPELESS * l => Some(format!(
-                    "at {:.2}× the least effort a converged start reached ({l:.6e}): left unpolished",
-                    f.outcome.objective / l
-                )),
-                _ => None,
-            })
-            .collect();
-        runs.extend(on_pool(firsts.into_iter().zip(skip).collect(), observer, |(f, skip), o| {
-            let mut run = finish(f, skip.is_none(), o);
-            run.polish_skipped = skip;
-            run
-        }));
-    }
-    Ok(runs)
-}
-
 /// Whether two converged runs reach the least effort of all, within [`AGREE`] of it.
-pub(super) fn agreed(runs: &[Run]) -> bool {
+fn agreed(runs: &[&Run]) -> bool {
     let efforts = || runs.iter().filter(|r| r.outcome.converged && r.outcome.objective.is_finite()).map(|r| r.outcome.objective);
     let Some(least) = efforts().min_by(f64::total_cmp) else { return false };
     efforts().filter(|&f| f <= least + AGREE * least.abs()).count() >= 2
-}
-
-/// `f` of every item: the first on this thread with `observer`, the others in parallel on the rayon pool
-/// with none; in order.
-fn on_pool<T: Send, U: Send>(
-    items: Vec<T>,
-    observer: &mut dyn FnMut(&Progress),
-    f: impl Fn(T, &mut dyn FnMut(&Progress)) -> U + Sync,
-) -> Vec<U> {
-    let mut items = items.into_iter();
-    let first = items.next().expect("at least one start");
-    let rest: Vec<T> = items.collect();
-    std::thread::scope(|scope| {
-        let others =
-            (!rest.is_empty()).then(|| scope.spawn(|| rest.into_par_iter().map(|t| f(t, &mut |_| {})).collect::<Vec<_>>()));
-        let mut out = vec![f(first, observer)];
-        if let Some(handle) = others {
-            out.extend(handle.join().expect("a start panicked"));
-        }
-        out
-    })
 }
 
 /// The index of the best run: converged first, then least effort (then the smaller violation), then the

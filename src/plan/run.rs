@@ -38,8 +38,12 @@ pub fn plan_with_starts(
     let runs = multistart::run_rounds(
         &guesses,
         multi,
+        &settings.cancel,
         observer,
-        |x, observer| first_phase(spec, solver, settings, deadline, x, observer),
+        |x, cancel, observer| {
+            let settings = Settings { cancel: cancel.clone(), ..settings.clone() };
+            first_phase(spec, solver, &settings, deadline, x, observer)
+        },
         |first, polish, observer| finish_start(first, solver, settings, deadline, polish, observer),
         |first| first.stalled(settings),
     )?;

@@ -91,19 +91,31 @@ impl Settings {
 /// The scaled violation below which a warm start is never said to have diverged, however it grew.
 pub const DIVERGED_VIOLATION: f64 = 1e-2;
 
-/// A flag another thread raises to stop a solve; clones share it.
+/// A flag another thread raises to stop a solve; clones share it. A [`child`](Cancel::child) has a flag
+/// of its own and reads its parents' too.
 #[derive(Clone, Debug, Default)]
-pub struct Cancel(std::sync::Arc<std::sync::atomic::AtomicBool>);
+pub struct Cancel {
+    own: std::sync::Arc<std::sync::atomic::AtomicBool>,
+    parents: Vec<std::sync::Arc<std::sync::atomic::AtomicBool>>,
+}
 
 impl Cancel {
-    /// Asks every solve holding this flag to stop.
+    /// Asks every solve holding this flag (or a child of it) to stop.
     pub fn raise(&self) {
-        self.0.store(true, std::sync::atomic::Ordering::Relaxed);
+        self.own.store(true, std::sync::atomic::Ordering::Relaxed);
     }
 
-    /// Whether the flag was raised.
+    /// Whether this flag or one of its parents' was raised.
     pub fn raised(&self) -> bool {
-        self.0.load(std::sync::atomic::Ordering::Relaxed)
+        std::iter::once(&self.own).chain(&self.parents).any(|f| f.load(std::sync::atomic::Ordering::Relaxed))
+    }
+
+    /// A flag that stops a solve when it or this one is raised: one start of several stopped alone, all
+    /// of them by the caller's flag (Ctrl-C).
+    pub fn child(&self) -> Cancel {
+        let mut parents = self.parents.clone();
+        parents.push(self.own.clone());
+        Cancel { own: Default::default(), parents }
     }
 }
 

@@ -1,0 +1,238 @@
+//! The rounds of starts on the threads ([`run_rounds`]). Which starts are used and which are polished is
+//! decided round by round as [`super`]'s module docs say, from the starts' results alone; the threads only
+//! choose *when* each piece runs:
+//! - a start whose first phase did not stall — and the first start, which is never left unpolished — is
+//!   finished at once, without waiting for the rest of its round;
+//! - a stalled start waits for its round's decision ([`HOPELESS`]), then its polish runs on any thread;
+//! - a thread with nothing of the current round left to do begins the next round's first phases ahead of
+//!   time (they depend on no other start); if the round ends the solve, they are stopped ([`Cancel`]) and
+//!   dropped.
+//!
+//! So the plan is the one the rounds make one after another, on any number of threads, while a fast start
+//! no longer leaves its thread idle until the slow one of its round ends.
+
+use super::HOPELESS;
+use crate::error::{Error, Result};
+use crate::plan::run::{Run, Started};
+use crate::solve::{Cancel, Progress};
+use std::sync::{Condvar, Mutex, MutexGuard};
+
+/// Where a start is.
+enum Slot<'s> {
+    /// Its first phase not begun.
+    Waiting,
+    /// A thread runs its first phase (and, where that did not stall, its finish), or its polish.
+    Running,
+    /// Its first phase stalled: the polish waits for its round's decision.
+    Stalled(Started<'s>),
+    /// Decided: to be finished, polished unless the reason says why not.
+    Ready(Started<'s>, Option<String>),
+    /// Its first phase failed.
+    Failed(Error),
+    /// Finished.
+    Done(Run),
+}
+
+/// A piece of work for a thread.
+enum Job<'s> {
+    First(usize),
+    Finish(usize, Started<'s>, Option<String>),
+}
+
+/// The starts and the rounds decided so far.
+struct State<'s> {
+    slots: Vec<Slot<'s>>,
+    /// Starts `[0, decided)` are in rounds whose polishes are decided.
+    decided: usize,
+    /// Once the rounds have ended: how many starts they used, or the first failure of a used one.
+    end: Option<Result<usize>>,
+    /// One flag per start (children of the caller's): a start begun ahead of time and not needed is stopped.
+    cancels: Vec<Cancel>,
+}
+
+impl<'s> State<'s> {
+    /// The next job, claimed: a decided polish first, then the lowest start not begun.
+    fn claim(&mut self) -> Option<Job<'s>> {
+        if let Some(i) = self.slots.iter().position(|s| matches!(s, Slot::Ready(..))) {
+            let Slot::Ready(started, skip) = std::mem::replace(&mut self.slots[i], Slot::Running) else { unreachable!() };
+            return Some(Job::Finish(i, started, skip));
+        }
+        let i = self.slots.iter().position(|s| matches!(s, Slot::Waiting))?;
+        self.slots[i] = Slot::Running;
+        Some(Job::First(i))
+    }
+
+    /// Decides every round that can be decided, and ends the rounds where two used starts agree or no start
+    /// is left. A round is decided once the rounds before it are finished and its own first phases are done.
+    fn advance(&mut self, round: usize) {
+        while self.end.is_none() {
+            let a = self.decided;
+            let Some(runs) =
+                self.slots[..a].iter().map(|s| if let Slot::Done(r) = s { Some(r) } else { None }).collect::<Option<Vec<_>>>()
+            else {
+                return; // polishes of the last round still running
+            };
+            if a == self.slots.len() || (a > 0 && super::agreed(&runs)) {
+                self.finish_rounds(Ok(a));
+                return;
+            }
+            let b = (a + round).min(self.slots.len());
+            if self.slots[a..b].iter().any(|s| matches!(s, Slot::Waiting | Slot::Running)) {
+                return;
+            }
+            if let Some(i) = (a..b).find(|&i| matches!(self.slots[i], Slot::Failed(_))) {
+                let Slot::Failed(e) = std::mem::replace(&mut self.slots[i], Slot::Running) else { unreachable!() };
+                self.finish_rounds(Err(e));
+                return;
+            }
+            self.decide(a, b);
+        }
+    }
+
+    /// Leaves a stalled start of round `[a, b)` unpolished where it stalled at more than [`HOPELESS`] times
+    /// the least effort a converged start reached, in this round or before.
+    fn decide(&mut self, a: usize, b: usize) {
+        let least = self.slots[..b]
+            .iter()
+            .filter_map(|s| match s {
+                Slot::Done(r) => Some(&r.outcome),
+                Slot::Stalled(f) => Some(&f.outcome),
+                _ => None,
+            })
+            .filter(|o| o.converged && o.objective.is_finite())
+            .map(|o| o.objective)
+            .min_by(f64::total_cmp);
+        for i in a..b {
+            if !matches!(self.slots[i], Slot::Stalled(_)) {
+                continue;
+            }
+            let Slot::Stalled(f) = std::mem::replace(&mut self.slots[i], Slot::Running) else { unreachable!() };
+            let skip = match least {
+                Some(l) if i > 0 && f.outcome.objective > HOPELESS * l => Some(format!(
+                    "at {:.2}× the least effort a converged start reached ({l:.6e}): left unpolished",
+                    f.outcome.objective / l
+                )),
+                _ => None,
+            };
+            self.slots[i] = Slot::Ready(f, skip);
+        }
+        self.decided = b;
+    }
+
+    /// Ends the rounds and stops the starts begun ahead of time that they did not use.
+    fn finish_rounds(&mut self, end: Result<usize>) {
+        let used = *end.as_ref().unwrap_or(&0);
+        self.cancels[used..].iter().for_each(Cancel::raise);
+        self.end = Some(end);
+    }
+}
+
+/// What every thread needs: the guesses, the three phases and the shared state.
+struct Work<'a, 's, F, P, W> {
+    guesses: &'a [Vec<f64>],
+    round: usize,
+    first: F,
+    finish: P,
+    stalled: W,
+    state: Mutex<State<'s>>,
+    changed: Condvar,
+}
+
+impl<'s, F, P, W> Work<'_, 's, F, P, W>
+where
+    F: Fn(&[f64], &Cancel, &mut dyn FnMut(&Progress)) -> Result<Started<'s>> + Sync,
+    P: Fn(Started<'s>, bool, &mut dyn FnMut(&Progress)) -> Run + Sync,
+    W: Fn(&Started<'s>) -> bool + Sync,
+{
+    fn lock(&self) -> MutexGuard<'_, State<'s>> {
+        self.state.lock().expect("no start panics holding the rounds' state")
+    }
+
+    /// A thread's loop: claims jobs until the rounds end. `observer` sees the first start's phases.
+    fn serve(&self, observer: &mut dyn FnMut(&Progress)) {
+        let mut state = self.lock();
+        while state.end.is_none() {
+            let Some(job) = state.claim() else {
+                state = self.changed.wait(state).expect("no start panics holding the rounds' state");
+                continue;
+            };
+            let (i, cancel) = match &job {
+                Job::First(i) | Job::Finish(i, ..) => (*i, state.cancels[*i].clone()),
+            };
+            drop(state);
+            let mut quiet = |_: &Progress| {};
+            let slot = self.run(job, &cancel, if i == 0 { &mut *observer } else { &mut quiet });
+            state = self.lock();
+            state.slots[i] = slot;
+            state.advance(self.round);
+            self.changed.notify_all();
+        }
+    }
+
+    /// One job: a first phase (finished at once where it did not stall, and for the first start), or a
+    /// decided polish.
+    fn run(&self, job: Job<'s>, cancel: &Cancel, observer: &mut dyn FnMut(&Progress)) -> Slot<'s> {
+        match job {
+            Job::First(i) => match (self.first)(&self.guesses[i], cancel, &mut *observer) {
+                Err(e) => Slot::Failed(e),
+                Ok(f) if i == 0 || !(self.stalled)(&f) => Slot::Done((self.finish)(f, true, observer)),
+                Ok(f) => Slot::Stalled(f),
+            },
+            Job::Finish(_, f, skip) => {
+                let mut run = (self.finish)(f, skip.is_none(), observer);
+                run.polish_skipped = skip;
+                Slot::Done(run)
+            }
+        }
+    }
+}
+
+/// Runs the starts from the guesses round by round, `multi.starts` at a time, until the rounds end
+/// ([`super::MultiStart::up_to`], [`super::agreed`]) or the guesses do — each start's first phase
+/// (`first`, stopped by its flag), then, where it stalled (`stalled`), its polish (`finish`) unless left
+/// unpolished ([`HOPELESS`]). The first start runs on this thread with `observer`; the others on this
+/// thread and as many more as rayon's pool has threads (module docs). `cancel` stops them all.
+pub(in crate::plan) fn run_rounds<'s, F, P, W>(
+    guesses: &[Vec<f64>],
+    multi: &super::MultiStart,
+    cancel: &Cancel,
+    observer: &mut dyn FnMut(&Progress),
+    first: F,
+    finish: P,
+    stalled: W,
+) -> Result<Vec<Run>>
+where
+    F: Fn(&[f64], &Cancel, &mut dyn FnMut(&Progress)) -> Result<Started<'s>> + Sync,
+    P: Fn(Started<'s>, bool, &mut dyn FnMut(&Progress)) -> Run + Sync,
+    W: Fn(&Started<'s>) -> bool + Sync,
+    Started<'s>: Send,
+{
+    let n = guesses.len();
+    let mut slots: Vec<Slot> = (0..n).map(|_| Slot::Waiting).collect();
+    slots[0] = Slot::Running; // this thread's, with the observer
+    let state = State { slots, decided: 0, end: None, cancels: (0..n).map(|_| cancel.child()).collect() };
+    let work =
+        Work { guesses, round: multi.starts.max(1), first, finish, stalled, state: Mutex::new(state), changed: Condvar::new() };
+    let helpers = rayon::current_num_threads().saturating_sub(1).min(n - 1);
+    std::thread::scope(|scope| {
+        for _ in 0..helpers {
+            scope.spawn(|| work.serve(&mut |_| {}));
+        }
+        let cancel = work.lock().cancels[0].clone();
+        let first = work.run(Job::First(0), &cancel, &mut *observer);
+        {
+            let mut state = work.lock();
+            state.slots[0] = first;
+            state.advance(work.round);
+            work.changed.notify_all();
+        }
+        work.serve(&mut |_| {});
+    });
+    let mut state = work.state.into_inner().expect("no start panics holding the rounds' state");
+    let used = state.end.take().expect("the rounds ended")?;
+    Ok(state
+        .slots
+        .drain(..used)
+        .map(|s| if let Slot::Done(r) = s { r } else { unreachable!("a used start is finished") })
+        .collect())
+}
