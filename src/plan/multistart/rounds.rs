@@ -36,7 +36,7 @@ enum Slot<'s> {
 /// A piece of work for a thread.
 enum Job<'s> {
     First(usize),
-    Finish(usize, Started<'s>, Option<String>),
+    Finish(usize, Box<Started<'s>>, Option<String>),
 }
 
 /// The starts and the rounds decided so far.
@@ -55,7 +55,7 @@ impl<'s> State<'s> {
     fn claim(&mut self) -> Option<Job<'s>> {
         if let Some(i) = self.slots.iter().position(|s| matches!(s, Slot::Ready(..))) {
             let Slot::Ready(started, skip) = std::mem::replace(&mut self.slots[i], Slot::Running) else { unreachable!() };
-            return Some(Job::Finish(i, started, skip));
+            return Some(Job::Finish(i, Box::new(started), skip));
         }
         let i = self.slots.iter().position(|s| matches!(s, Slot::Waiting))?;
         self.slots[i] = Slot::Running;
@@ -179,7 +179,7 @@ where
                 Ok(f) => Slot::Stalled(f),
             },
             Job::Finish(_, f, skip) => {
-                let mut run = (self.finish)(f, skip.is_none(), observer);
+                let mut run = (self.finish)(*f, skip.is_none(), observer);
                 run.polish_skipped = skip;
                 Slot::Done(run)
             }
