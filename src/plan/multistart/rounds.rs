@@ -48,6 +48,8 @@ struct State<'s> {
     end: Option<Result<usize>>,
     /// One flag per start (children of the caller's): a start begun ahead of time and not needed is stopped.
     cancels: Vec<Cancel>,
+    /// A job's panic, raised again once every thread has stopped.
+    panicked: Option<Box<dyn std::any::Any + Send>>,
 }
 
 impl<'s> State<'s> {
@@ -161,12 +163,32 @@ where
             };
             drop(state);
             let mut quiet = |_: &Progress| {};
-            let slot = self.run(job, &cancel, if i == 0 { &mut *observer } else { &mut quiet });
-            state = self.lock();
-            state.slots[i] = slot;
-            state.advance(self.round);
-            self.changed.notify_all();
+            state = self.complete(i, self.run_caught(job, &cancel, if i == 0 { &mut *observer } else { &mut quiet }));
         }
+    }
+
+    /// [`Self::run`], a panic caught (to end the rounds and be raised again on the caller's thread, rather
+    /// than leave the others waiting for a start that never finishes).
+    fn run_caught(&self, job: Job<'s>, cancel: &Cancel, observer: &mut dyn FnMut(&Progress)) -> std::thread::Result<Slot<'s>> {
+        std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| self.run(job, cancel, observer)))
+    }
+
+    /// Stores start `i`'s new state (or the panic that ended the job: the rounds end and every start stops),
+    /// decides what can be decided and wakes the waiting threads.
+    fn complete(&self, i: usize, slot: std::thread::Result<Slot<'s>>) -> MutexGuard<'_, State<'s>> {
+        let mut state = self.lock();
+        match slot {
+            Ok(slot) => {
+                state.slots[i] = slot;
+                state.advance(self.round);
+            }
+            Err(panic) => {
+                state.panicked.get_or_insert(panic);
+                state.finish_rounds(Ok(0));
+            }
+        }
+        self.changed.notify_all();
+        state
     }
 
     /// One job: a first phase (finished at once where it did not stall, and for the first start), or a
@@ -210,7 +232,7 @@ where
     let n = guesses.len();
     let mut slots: Vec<Slot> = (0..n).map(|_| Slot::Waiting).collect();
     slots[0] = Slot::Running; // this thread's, with the observer
-    let state = State { slots, decided: 0, end: None, cancels: (0..n).map(|_| cancel.child()).collect() };
+    let state = State { slots, decided: 0, end: None, cancels: (0..n).map(|_| cancel.child()).collect(), panicked: None };
     let work =
         Work { guesses, round: multi.starts.max(1), first, finish, stalled, state: Mutex::new(state), changed: Condvar::new() };
     let helpers = rayon::current_num_threads().saturating_sub(1).min(n - 1);
@@ -219,20 +241,55 @@ where
             scope.spawn(|| work.serve(&mut |_| {}));
         }
         let cancel = work.lock().cancels[0].clone();
-        let first = work.run(Job::First(0), &cancel, &mut *observer);
-        {
-            let mut state = work.lock();
-            state.slots[0] = first;
-            state.advance(work.round);
-            work.changed.notify_all();
-        }
+        drop(work.complete(0, work.run_caught(Job::First(0), &cancel, &mut *observer)));
         work.serve(&mut |_| {});
     });
     let mut state = work.state.into_inner().expect("no start panics holding the rounds' state");
+    if let Some(panic) = state.panicked.take() {
+        std::panic::resume_unwind(panic);
+    }
     let used = state.end.take().expect("the rounds ended")?;
     Ok(state
         .slots
         .drain(..used)
         .map(|s| if let Slot::Done(r) = s { r } else { unreachable!("a used start is finished") })
         .collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::plan::run::{finish_start, first_phase};
+    use crate::plan::{initial_x, task::Task, MultiStart, Transcription};
+
+    /// A start that panics ends the rounds: the panic reaches the caller's thread, and no thread waits
+    /// forever for the start that never finishes (the double pendulum's automatic starts, the second one
+    /// panicking while the first runs on this thread).
+    #[test]
+    fn a_panicking_start_is_raised_on_the_callers_thread() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/double_pendulum.toml");
+        let task = Task::load(&path).unwrap();
+        let (spec, settings, solver) = (&task.spec, &task.settings, task.solver);
+        let mut problem = Transcription::new(spec).unwrap();
+        let x0 = initial_x(spec, &mut problem).unwrap();
+        let multi = MultiStart::default();
+        let guesses = crate::plan::multistart::guesses(spec, &mut problem, &x0, &multi).unwrap();
+        let rounds = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            run_rounds(
+                &guesses,
+                &multi,
+                &Cancel::default(),
+                &mut |_| {},
+                |x, _, observer| {
+                    assert!(x == &guesses[0][..], "a start that panics");
+                    first_phase(spec, solver, settings, None, x, observer)
+                },
+                |first, polish, observer| finish_start(first, solver, settings, None, polish, observer),
+                |first| first.stalled(settings),
+            )
+        }));
+        let panic = rounds.err().expect("the panic reached this thread");
+        let message = panic.downcast_ref::<&str>().copied().or(panic.downcast_ref::<String>().map(String::as_str));
+        assert_eq!(message, Some("a start that panics"));
+    }
 }
