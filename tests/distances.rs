@@ -105,22 +105,23 @@ fn rounded_distances_never_exceed_the_exact_and_fall_short_by_at_most_their_boun
     cases.push((seg([0.0, 0.0, 0.0], [1.0, 0.0, 0.0]), seg([0.5, -0.5, 0.2], [0.5, 0.5, 0.2]))); // crossing
     cases.push((seg([0.2, 0.1, 0.0], [0.2, 0.1, 0.0]), seg([0.0, 0.0, 0.0], [1.0, 0.0, 0.0]))); // a sphere
     cases.push((seg([0.2, 0.1, 0.0], [0.2, 0.1, 0.0]), seg([0.2, 0.3, 0.0], [0.2, 0.3, 0.0]))); // two spheres
+    cases.push((seg([0.0, 0.0, 0.0], [1.0, 0.0, 0.0]), seg([0.5, -0.5, 0.001], [0.5, 0.5, 0.001]))); // axes 1 mm apart
+    cases.push((seg([0.0, 0.0, 0.0], [1.0, 0.0, 0.0]), seg([0.5, -0.5, 0.0], [0.5, 0.5, 0.0]))); // axes crossing
     let mut checked = 0;
     for (c1, c2) in cases {
         let (exact, rounded) = (capsule_capsule(&c1, &c2), capsule_capsule_rounded(&c1, &c2));
         let gap = exact.distance + c1.radius + c2.radius;
         let eps = rounding(&c1, &c2);
         assert!(rounded.distance.is_finite() && rounded.normal.iter().all(|x| x.is_finite()));
-        // Outside the deep-penetration branch (`V* ≥ ε`): never above, and below by `g − √(g² − ε/2)` at most.
+        // |∂d/∂p_a| ≤ √(3/2) where √V* is used, ≤ 2√(3/2) · 2 below ε: bounded even where the axes meet.
+        assert!(rounded.normal.norm() <= 5.0, "a gradient of {}", rounded.normal.norm());
+        // Never above the exact distance, deep inside each other too.
+        let short = exact.distance - rounded.distance;
+        assert!(short >= -1e-12, "{c1:?} {c2:?}: {} exact, {} rounded", exact.distance, rounded.distance);
+        // Outside a deep penetration (`V* ≥ ε`), below it by `g − √(g² − ε/2)` at most.
         if gap * gap >= 1.5 * eps {
-            let short = exact.distance - rounded.distance;
             let bound = gap - (gap * gap - 0.5 * eps).sqrt();
-            assert!(
-                short >= -1e-12 && short <= bound + 1e-12,
-                "{c1:?} {c2:?}: {} exact, {} rounded",
-                exact.distance,
-                rounded.distance
-            );
+            assert!(short <= bound + 1e-12, "{c1:?} {c2:?}: {} exact, {} rounded", exact.distance, rounded.distance);
             assert!(bound <= 0.3 * eps / gap);
             checked += 1;
         }

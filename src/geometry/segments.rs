@@ -69,7 +69,8 @@ pub const ROUNDING: f64 = 0.01;
 /// one, and falls short of it by `≤ ε/(4g)` at an axis gap `g` — a quarter of a per cent of `r_a + r_b` where
 /// the capsules touch. `normal` is `(p_a − p_b)/√V*` (a little longer than a unit vector), so that
 /// `∂d/∂p_a = normal` stays the exact gradient. Below `V* = ε` (the axes nearly meeting, a deep
-/// penetration) `√V` continues by its tangent in `V`, so the gradient stays bounded.
+/// penetration) `√V` continues by the quadratic `V(3 − V/ε)/(2√ε)`, which meets it with its slope at `ε`,
+/// stays below it (and below the exact distance) and keeps the gradient bounded by `2/√ε`.
 pub fn capsule_capsule_rounded(c1: &Capsule, c2: &Capsule) -> Separation {
     let (d1, d2, r) = (c1.b - c1.a, c2.b - c2.a, c1.a - c2.a);
     // (a floor for capsules of no radius: the square's minimiser stays unique)
@@ -80,9 +81,12 @@ pub fn capsule_capsule_rounded(c1: &Capsule, c2: &Capsule) -> Separation {
     let gap = on_a - on_b;
     // V* = ‖g‖² + ε((s − ½)² + (t − ½)² − ½)
     let v = gap.norm_squared() + eps * ((s - 0.5).powi(2) + (t - 0.5).powi(2) - 0.5);
-    // √V for V ≥ ε, its tangent √ε + (V − ε)/(2√ε) below; ∂d/∂g = (∂d/∂V)·2g
-    let (root, slope) =
-        if v >= eps { (v.sqrt(), 0.5 / v.sqrt()) } else { (eps.sqrt() + (v - eps) * 0.5 / eps.sqrt(), 0.5 / eps.sqrt()) };
+    // √V for V ≥ ε, V(3 − V/ε)/(2√ε) below (C¹ at ε, under √V); ∂d/∂g = (∂d/∂V)·2g
+    let (root, slope) = if v >= eps {
+        (v.sqrt(), 0.5 / v.sqrt())
+    } else {
+        (v * (3.0 - v / eps) / (2.0 * eps.sqrt()), (1.5 - v / eps) / eps.sqrt())
+    };
     let normal = if gap.norm() > 1e-12 { gap * (2.0 * slope) } else { across(d1, d2) };
     Separation { distance: root - c1.radius - c2.radius, on_a, on_b, normal }
 }
