@@ -15,6 +15,7 @@ use mintorque::dynamics::{
     rnea_derivatives::rnea_derivatives,
     rnea_gradient::rnea_gradient,
     rnea_gradient_moved::{restore, rnea_gradient_moved, Moved, Subtrees},
+    rnea_velocity_hessian::{rnea_velocity_hessian, VelocityHessianWork},
     Data,
 };
 use mintorque::spatial::{Force, Motion, Vec3};
@@ -178,6 +179,37 @@ proptest! {
                 prop_assert!((g[k] - exact).abs() <= 1e-10 * scale, "∂φ column {k} of block {wrt}: {} vs {exact}", g[k]);
             }
         }
+    }
+
+    /// The exact velocity block `∂²φ/∂q̇²` against central differences of the contracted gradient's `∂φ/∂q̇`
+    /// (affine in `q̇`, so the differences are exact to rounding), with external forces on every body.
+    #[test]
+    fn velocity_hessian_matches_differences_of_the_gradient(seed in any::<u64>(), n in 1usize..=40) {
+        let model = random_tree(seed, n);
+        let mut data = Data::new(&model);
+        let (q, v, a) = state(seed, n);
+        let fext = random_fext(&model, seed);
+        let (omega, u0) = random_weights(seed ^ 0x55, n);
+        let g_v = |data: &mut Data, v: &[f64]| {
+            let (mut g_q, mut g_v, mut g_a) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+            rnea_gradient(&model, data, (&q, v, &a), &G, Some(&fext), &omega, &u0, (&mut g_q, &mut g_v, &mut g_a));
+            g_v
+        };
+        let h = 1e-3;
+        let mut fd = DMatrix::zeros(n, n);
+        for k in 0..n {
+            let (mut plus, mut minus) = (v.clone(), v.clone());
+            plus[k] += h;
+            minus[k] -= h;
+            let column = (DVector::from_vec(g_v(&mut data, &plus)) - DVector::from_vec(g_v(&mut data, &minus))) / (2.0 * h);
+            fd.set_column(k, &column);
+        }
+        let mut exact = vec![f64::NAN; n * n];
+        kinematics::placements(&model, &mut data, &q);
+        rnea_velocity_hessian(&model, &data, (&omega, &u0), &mut VelocityHessianWork::new(&model), &mut exact, n);
+        let exact = DMatrix::from_row_slice(n, n, &exact);
+        let scale = fd.amax().max(1.0);
+        prop_assert!((&exact - &fd).amax() <= 1e-8 * scale, "off by {:e} (scale {scale:e})", (&exact - &fd).amax());
     }
 
     #[test]

@@ -26,9 +26,11 @@ use super::constraints::balance_coefficients;
 use super::node_gradient::Pass;
 use super::{IneqRow, Transcription};
 use crate::dynamics::rnea_gradient_moved::{restore, Moved, Subtrees};
+use crate::dynamics::rnea_velocity_hessian::{rnea_velocity_hessian, VelocityHessianWork};
 use crate::dynamics::{kinematics, point_force::point_jacobian, Data};
 use crate::model::Model;
 use crate::solve::SymmetricMatrix;
+use crate::spatial::{Motion, Vec3};
 use crate::trajectory::bspline::BasisAt;
 
 /// Relative step of the forward differences: `ε = STEP·(1 + |zᵢ|)`, about √(machine ε).
@@ -63,6 +65,8 @@ pub(super) struct HessianWork {
     pub(super) base: Data,
     pub(super) base_gradient: Vec<f64>,
     pub(super) subtrees: Subtrees,
+    /// Scratch of the exact velocity block ([`rnea_velocity_hessian`]).
+    velocity: VelocityHessianWork,
 }
 
 impl HessianWork {
@@ -86,6 +90,7 @@ impl HessianWork {
             base: Data::new(model),
             base_gradient: vec![0.0; 3 * nv],
             subtrees: Subtrees::of(model),
+            velocity: VelocityHessianWork::new(model),
         }
     }
 }
@@ -180,10 +185,10 @@ impl Transcription<'_> {
         h.omega.iter().chain(&h.omega_w).chain(&h.rho).chain(&h.root_w).any(|v| *v != 0.0)
     }
 
-    /// `∇²φₖ` into `hess.s`: forward differences of `∇φ` along `q` and `q̇`, the rest by structure.
+    /// `∇²φₖ` into `hess.s`: forward differences of `∇φ` along `q` (and `q̇` where the velocity block is not
+    /// exact), the rest by structure.
     fn node_hessian(&mut self, k: usize) {
-        let (nv, nl) = (self.layout.nv, self.layout.n_lambda);
-        let d = 3 * nv + nl;
+        let nv = self.layout.nv;
         self.node_state(k);
         self.save_state();
         let mut grad = std::mem::take(&mut self.hess.grad);
@@ -194,7 +199,9 @@ impl Transcription<'_> {
         let free = !self.free.dofs.is_empty();
         self.node_gradient(&mut grad, if free { Pass::Full { placed: false } } else { Pass::Base });
         self.hess.s.fill(0.0);
-        for j in 0..2 * nv {
+        let velocity_exact = self.velocity_block_exact();
+        let columns = if velocity_exact { nv } else { 2 * nv };
+        for j in 0..columns {
             self.restore_state();
             let epsilon = self.perturb(j);
             let moved = if j < nv { (j, Moved::Position) } else { (j - nv, Moved::Velocity) };
@@ -202,21 +209,52 @@ impl Transcription<'_> {
             if !free {
                 restore(&self.hess.base, &mut self.data, moved, &self.hess.subtrees);
             }
-            // Column j (a q or q̇ column), and row j by symmetry for the q̈ and λ columns.
-            for i in 0..d {
-                let v = (perturbed[i] - grad[i]) / epsilon;
-                if i < 2 * nv {
-                    self.hess.s[i * d + j] += 0.5 * v; // the q/q̇ block is symmetrised
-                    self.hess.s[j * d + i] += 0.5 * v;
-                } else {
-                    self.hess.s[i * d + j] = v;
-                    self.hess.s[j * d + i] = v;
-                }
-            }
+            self.add_column(j, &perturbed, &grad, epsilon, velocity_exact);
+        }
+        if velocity_exact {
+            self.add_velocity_block();
         }
         self.restore_state();
         self.hess.grad = grad;
         self.hess.grad_perturbed = perturbed;
+    }
+
+    /// Column `j` (a `q` or `q̇` column) of `hess.s` from the difference of `∇φ`, and row `j` by symmetry for
+    /// the other blocks. The `q`/`q̇` block is symmetrised (half from each side), except the `q̇` rows when the
+    /// velocity block is exact: there the `q` columns alone give the `q̇`–`q` entries.
+    fn add_column(&mut self, j: usize, perturbed: &[f64], grad: &[f64], epsilon: f64, velocity_exact: bool) {
+        let nv = self.layout.nv;
+        let d = 3 * nv + self.layout.n_lambda;
+        let halves = if velocity_exact { nv } else { 2 * nv };
+        let s = &mut self.hess.s;
+        for i in 0..d {
+            let v = (perturbed[i] - grad[i]) / epsilon;
+            if i < halves {
+                s[i * d + j] += 0.5 * v;
+                s[j * d + i] += 0.5 * v;
+            } else {
+                s[i * d + j] = v;
+                s[j * d + i] = v;
+            }
+        }
+    }
+
+    /// Whether `∂²φ/∂q̇²` is the engine's exact block ([`rnea_velocity_hessian`]): a fixed-base tree whose
+    /// weights `ω̂` do not depend on the state (no strength terms), so that `φ = ω̂ᵀτ + ω_W·W` with `τ`'s
+    /// other parts (passive torques, loads, contact forces) at most linear in `q̇`.
+    fn velocity_block_exact(&self) -> bool {
+        self.free.dofs.is_empty() && self.spec.strength.is_none() && self.hess.rho.iter().all(|r| *r == 0.0)
+    }
+
+    /// The `q̇`–`q̇` block of `hess.s` from [`rnea_velocity_hessian`] at the node's placements (`hess.base`).
+    fn add_velocity_block(&mut self) {
+        let nv = self.layout.nv;
+        let d = 3 * nv + self.layout.n_lambda;
+        let h = &mut self.hess;
+        let ow = &h.omega_w;
+        let u0 = Motion::new(Vec3::new(ow[0], ow[1], ow[2]), Vec3::new(ow[3], ow[4], ow[5]));
+        let block = &mut h.s[nv * d + nv..];
+        rnea_velocity_hessian(&self.spec.model, &h.base, (&h.omega_hat, &u0), &mut h.velocity, block, d);
     }
 
     fn save_state(&mut self) {
