@@ -24,7 +24,8 @@
 //!
 //! One forward pass for `U`, one backward pass for the composites and `G`, `β`: no `k`-loop over ancestors.
 //! This is the reverse-mode (adjoint) gradient that the planner's exact second-order term differences
-//! (`plan/transcription/hessian.rs`): `2·nv` of these per node instead of `2·nv` whole derivative matrices,
+//! (`plan/transcription/hessian.rs`): `nv` of these per node (`2·nv` where [`super::rnea_velocity_hessian`]
+//! does not give the `q̇` block) instead of as many whole derivative matrices,
 //! each after the first recomputing only the moved joint's subtree ([`super::rnea_gradient_moved`]).
 
 use super::kinematics::{accelerations, placements, velocities};

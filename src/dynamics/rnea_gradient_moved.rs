@@ -1,6 +1,7 @@
 //! [`super::rnea_gradient`] again after one coordinate moved: `∇φ` at `(q, q̇, q̈)` where only `q_j` or `q̇_j`
 //! differs from a state whose full pass is kept in `base`. This is the pass that the planner's exact
-//! second-order term repeats `2·nv` times per node, differencing `∇φ` along each `q_j` and `q̇_j`
+//! second-order term repeats per node, differencing `∇φ` along each `q_j` (and `q̇_j` where
+//! [`super::rnea_velocity_hessian`] does not apply)
 //! (`plan/transcription/hessian.rs`).
 //!
 //! Moving `q_j` or `q̇_j` changes the placements, velocities and accelerations of the bodies of `j`'s subtree
