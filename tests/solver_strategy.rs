@@ -31,8 +31,9 @@ fn multistart_is_deterministic_and_never_worse_than_one_start() {
             s.index, s.seed, s.objective, s.converged, s.iterations
         );
         if s.converged {
+            // The least effort, or one within the tie of it (the same optimum to the tolerance: the first kept).
             assert!(
-                a.outcome.objective <= s.objective,
+                a.outcome.objective <= s.objective * (1.0 + mintorque::plan::TIE),
                 "kept {} but start {} reached {}",
                 a.outcome.objective,
                 s.index,
@@ -95,7 +96,7 @@ fn a_start_stalled_far_above_a_converged_one_is_not_polished() {
         assert!(!s.polished && s.objective > mintorque::plan::HOPELESS * best, "{s:?}");
         assert!(s.polish_skipped.as_deref().is_some_and(|why| why.contains("left unpolished")), "{s:?}");
     }
-    assert!(planned.converged() && planned.outcome.objective <= best);
+    assert!(planned.converged() && planned.outcome.objective <= best * (1.0 + mintorque::plan::TIE));
     assert!(planned.outcome.iterations <= 100, "{} iterations", planned.outcome.iterations);
 }
 

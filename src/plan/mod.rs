@@ -19,7 +19,7 @@ pub mod transcription;
 pub use between::{BetweenNodes, CheckNodes, NodeViolation, Tolerances};
 pub use guess::initial_x;
 pub use ik::close_loop;
-pub use multistart::{next_signed, MultiStart, StartReport, Starts, AGREE, HOPELESS};
+pub use multistart::{next_signed, MultiStart, StartReport, Starts, AGREE, HOPELESS, TIE};
 pub use refine::{last_change, plan_refined, Level, Refinement, Settled};
 pub use run::{plan, plan_with_starts};
 pub use spec::{
