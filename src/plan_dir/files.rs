@@ -163,23 +163,43 @@ impl PlanContents {
         if let Some(t) = &self.resolved_task {
             files.insert("task.resolved.toml".to_string(), t.clone().into_bytes());
         }
-        next();
-        files.extend([motion_html(model, record, summary_text.as_deref())]);
-        next();
-        files.extend(filmstrip(model, record, self.filmstrip_view, super::filmstrip_names(None))?);
+        // The renderings are independent: all at once on scoped threads, joined (and reported) in order.
+        let jobs = self.renderings(summary_text.as_deref());
+        std::thread::scope(|scope| {
+            let handles: Vec<_> = jobs.into_iter().map(|job| scope.spawn(job)).collect();
+            for handle in handles {
+                next();
+                let rendered = handle.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic))?;
+                files.extend(rendered);
+            }
+            Ok::<_, super::Error>(())
+        })?;
+        Ok(files)
+    }
+}
+
+/// One rendering of [`PlanContents::render_reporting`]: the files of one of its stages after the first.
+type Rendering<'a> = Box<dyn FnOnce() -> Result<Vec<(String, Vec<u8>)>> + Send + 'a>;
+
+impl PlanContents {
+    /// The stages after the first ([`PlanContents::stages`]), in their order: the viewer, the filmstrips,
+    /// the plots.
+    fn renderings<'a>(&'a self, summary: Option<&'a str>) -> Vec<Rendering<'a>> {
+        let (model, record) = (&self.model, &self.record);
+        let mut jobs: Vec<Rendering<'a>> = vec![
+            Box::new(move || Ok(vec![motion_html(model, record, summary)])),
+            Box::new(move || filmstrip(model, record, self.filmstrip_view, super::filmstrip_names(None))),
+        ];
         for view in self.extra_views() {
-            next();
-            files.extend(filmstrip(model, record, view, super::filmstrip_names(Some(view)))?);
+            jobs.push(Box::new(move || filmstrip(model, record, view, super::filmstrip_names(Some(view)))));
         }
         if self.plots {
-            next();
-            files.extend(report::plots::plots(model, record, self.guess.as_deref())?);
+            jobs.push(Box::new(move || Ok(report::plots::plots(model, record, self.guess.as_deref())?)));
             if let Some(e) = &self.ergonomics {
-                next();
-                files.extend(ergonomics::plots::plots(model, record, self.joint_loads.as_ref(), e)?);
+                jobs.push(Box::new(move || Ok(ergonomics::plots::plots(model, record, self.joint_loads.as_ref(), e)?)));
             }
         }
-        Ok(files)
+        jobs
     }
 }
 
