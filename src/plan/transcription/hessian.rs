@@ -14,8 +14,9 @@
 //! one O(nv) contracted pass of the engine (`node_gradient.rs`, `dynamics::rnea_gradient`), and `∇²φₖ` is its
 //! forward difference along each `qᵢ` — `nv` such passes at one node, each recomputing only the moved
 //! joint's subtree (`dynamics::rnea_gradient_moved`; whole passes for a free root) —, the `q̇`–`q̇` block exact
-//! in one O(nv·depth) pass (`dynamics::rnea_velocity_hessian`: on a fixed-base tree without strength terms
-//! nothing else in `φ` is of second order in `q̇`; elsewhere differences along each `q̇ᵢ` too), completed by
+//! in one O(nv·depth) pass (`dynamics::rnea_velocity_hessian`: without strength terms nothing else in `φ` is
+//! of second order in `q̇` — for a free body `φ`'s `q̇` part is `ω̃ᵀτ` at weights of `q` alone; with strength
+//! terms, differences along each `q̇ᵢ` too), completed by
 //! structure: `τ` is linear in `q̈` and in `λ`, and `∂τ/∂q̈ = H(q)` does not depend on `q̇`, so
 //! `∂²φ/∂q̈² = ∂²φ/∂q̈∂q̇ = ∂²φ/∂λ² = ∂²φ/∂λ∂q̇ = 0` and the remaining blocks follow by symmetry from the `q`
 //! (and `q̇`) columns. The loop closures
@@ -68,8 +69,9 @@ pub(super) struct HessianWork {
     pub(super) base: Data,
     pub(super) base_gradient: Vec<f64>,
     pub(super) subtrees: Subtrees,
-    /// Scratch of the exact velocity block ([`rnea_velocity_hessian`]).
+    /// Scratch of the exact velocity block ([`rnea_velocity_hessian`]) and its weights.
     velocity: VelocityHessianWork,
+    velocity_weights: Vec<f64>,
 }
 
 impl HessianWork {
@@ -94,6 +96,7 @@ impl HessianWork {
             base_gradient: vec![0.0; 3 * nv],
             subtrees: Subtrees::of(model),
             velocity: VelocityHessianWork::new(model),
+            velocity_weights: vec![0.0; nv],
         }
     }
 }
@@ -203,6 +206,9 @@ impl Transcription<'_> {
         self.node_gradient(&mut grad, if free { Pass::Full { placed: false } } else { Pass::Base });
         self.hess.s.fill(0.0);
         let velocity_exact = self.velocity_block_exact();
+        if velocity_exact {
+            self.add_velocity_block();
+        }
         let columns = if velocity_exact { nv } else { 2 * nv };
         for j in 0..columns {
             self.restore_state();
@@ -213,9 +219,6 @@ impl Transcription<'_> {
                 restore(&self.hess.base, &mut self.data, moved, &self.hess.subtrees);
             }
             self.add_column(j, &perturbed, &grad, epsilon, velocity_exact);
-        }
-        if velocity_exact {
-            self.add_velocity_block();
         }
         self.restore_state();
         self.hess.grad = grad;
@@ -242,22 +245,36 @@ impl Transcription<'_> {
         }
     }
 
-    /// Whether `∂²φ/∂q̇²` is the engine's exact block ([`rnea_velocity_hessian`]): a fixed-base tree whose
-    /// weights `ω̂` do not depend on the state (no strength terms), so that `φ = ω̂ᵀτ + ω_W·W` with `τ`'s
-    /// other parts (passive torques, loads, contact forces) at most linear in `q̇`.
+    /// Whether `∂²φ/∂q̇²` is the engine's exact block ([`rnea_velocity_hessian`]) after the node's base pass:
+    /// the weights `ω̂` do not depend on the state (no strength terms), so that `φ = ω̂ᵀτ + ω_W·W` with `τ`'s
+    /// other parts (passive torques, loads, contact forces) at most linear in `q̇`; for a free body the
+    /// contracted gradient was used (`H_rr` regular: `root_gradient.rs`), whose `q̇` dependence is `ω̃ᵀτ` at
+    /// weights `ω̃` of `q` alone (its root rows' momenta `H q̇` are linear).
     fn velocity_block_exact(&self) -> bool {
-        self.free.dofs.is_empty() && self.spec.strength.is_none() && self.hess.rho.iter().all(|r| *r == 0.0)
+        let contracted = self.free.dofs.is_empty() || self.free.root_factor.is_some();
+        contracted && self.spec.strength.is_none() && self.hess.rho.iter().all(|r| *r == 0.0)
     }
 
-    /// The `q̇`–`q̇` block of `hess.s` from [`rnea_velocity_hessian`] at the node's placements (`hess.base`).
+    /// The `q̇`–`q̇` block of `hess.s` from [`rnea_velocity_hessian`] at the placements of the node's base pass
+    /// (in `data`), with that pass's weights: `ω̂` and `u₀ = ω_W`, or a free body's first-pass weights `ω̃`
+    /// (plus the root rows' where they are its forces: `root_gradient.rs`), `u₀ = 0`.
     fn add_velocity_block(&mut self) {
         let nv = self.layout.nv;
         let d = 3 * nv + self.layout.n_lambda;
-        let h = &mut self.hess;
-        let ow = &h.omega_w;
-        let u0 = Motion::new(Vec3::new(ow[0], ow[1], ow[2]), Vec3::new(ow[3], ow[4], ow[5]));
+        let (f, h) = (&self.free, &mut self.hess);
+        let u0 = if f.dofs.is_empty() {
+            h.velocity_weights.copy_from_slice(&h.omega_hat);
+            let ow = &h.omega_w;
+            Motion::new(Vec3::new(ow[0], ow[1], ow[2]), Vec3::new(ow[3], ow[4], ow[5]))
+        } else {
+            h.velocity_weights.copy_from_slice(&f.omega_tilde);
+            if !f.conserved {
+                f.dofs.iter().zip(&h.root_w).for_each(|(&r, &w)| h.velocity_weights[r] += w);
+            }
+            Motion::ZERO
+        };
         let block = &mut h.s[nv * d + nv..];
-        rnea_velocity_hessian(&self.spec.model, &h.base, (&h.omega_hat, &u0), &mut h.velocity, block, d);
+        rnea_velocity_hessian(&self.spec.model, &self.data, (&h.velocity_weights, &u0), &mut h.velocity, block, d);
     }
 
     fn save_state(&mut self) {
