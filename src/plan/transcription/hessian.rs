@@ -13,7 +13,8 @@
 //! `Bₖ` the chain rule of eq. 33 (the four basis functions and their derivatives). `∇φₖ` is exact and costs
 //! one O(nv) contracted pass of the engine (`node_gradient.rs`, `dynamics::rnea_gradient`), and `∇²φₖ` is its
 //! forward difference along each `qᵢ` — `nv` such passes at one node, each recomputing only the moved
-//! joint's subtree (`dynamics::rnea_gradient_moved`; whole passes for a free root) —, the `q̇`–`q̇` block exact
+//! joint's subtree (`dynamics::rnea_gradient_moved`; whole passes for a free root, whose three translations
+//! have zero columns) —, the `q̇`–`q̇` block exact
 //! in one O(nv·depth) pass (`dynamics::rnea_velocity_hessian`: without strength terms nothing else in `φ` is
 //! of second order in `q̇` — for a free body `φ`'s `q̇` part is `ω̃ᵀτ` at weights of `q` alone; with strength
 //! terms, differences along each `q̇ᵢ` too), completed by
@@ -211,6 +212,9 @@ impl Transcription<'_> {
         }
         let columns = if velocity_exact { nv } else { 2 * nv };
         for j in 0..columns {
+            if free && self.moves_the_whole_figure(j) {
+                continue;
+            }
             self.restore_state();
             let epsilon = self.perturb(j);
             let moved = if j < nv { (j, Moved::Position) } else { (j - nv, Moved::Velocity) };
@@ -223,6 +227,16 @@ impl Transcription<'_> {
         self.restore_state();
         self.hess.grad = grad;
         self.hess.grad_perturbed = perturbed;
+    }
+
+    /// Whether `qⱼ` translates a free figure as a whole (its root's prismatic joints): the node's `φ` does not
+    /// depend on it (joint torques, the root rows' forces and momenta about the root's own axes, point forces of
+    /// fixed directions and uniform gravity do not change when everything moves by the same offset; a free
+    /// figure has no balance rows), so its column of `∇²φ` is zero.
+    fn moves_the_whole_figure(&self, j: usize) -> bool {
+        j < self.layout.nv
+            && self.free.dofs.contains(&j)
+            && self.spec.model.joints[j + 1].kind == crate::model::JointKind::Prismatic
     }
 
     /// Column `j` (a `q` or `q̇` column) of `hess.s` from the difference of `∇φ`, and row `j` by symmetry for
