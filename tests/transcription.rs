@@ -217,6 +217,20 @@ fn second_order_term_matches_differences_of_the_gradient() {
     }
 }
 
+/// The same without contacts and loads — a figure free of point forces, standing on its balance rows: the
+/// node Hessian's `q` columns come from the engine's exact blocks (`dynamics::rnea_position_hessian`) instead
+/// of differences, and must match the differences of the gradient as well.
+#[test]
+fn second_order_term_without_point_forces_matches_differences_of_the_gradient() {
+    for (seed, n, zev) in [(31u64, 1usize, true), (32, 4, false), (33, 9, true), (34, 12, false)] {
+        let mut spec = random_spec(seed, n, zev);
+        spec.contacts.clear();
+        spec.loads.clear();
+        spec.check_nodes.closures.clear();
+        second_order_matches_differences(&spec, seed, 0.8);
+    }
+}
+
 /// A free-floating figure (the sagittal human on a 6-DOF unactuated root, in space): its root's momentum
 /// rows — equalities at one collocation node per knot span — and its joints' torques with the root
 /// accelerating freely (`τ_j − H_jr H_rr⁻¹ τ_r`) have exact Jacobians and second-order terms.
@@ -329,4 +343,42 @@ fn free_root_posture_goal_holds_the_joints_not_the_root() {
     let want = 1f64.to_radians() - mintorque::plan::spec::JOINT_GOAL_TOLERANCE;
     assert!((g[2 * k] - want).abs() < 1e-12, "{} vs {want}", g[2 * k]);
     assert_eq!(g.iter().filter(|g| **g > 0.0).count(), 1);
+}
+
+/// On the human figures of the peer suite and a free-floating bundled example, the node Hessians from the
+/// engine's exact blocks (`rnea_velocity_hessian`, `rnea_position_hessian`) against the same term with every
+/// `q` and `q̇` column differenced: the same matrix to the differences' error, at a random point with random
+/// weights on every row.
+#[test]
+fn exact_node_blocks_agree_with_the_differenced_ones_on_the_human_figures() {
+    use mintorque::plan::task::Task;
+    use mintorque::solve::SymmetricMatrix;
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    for (i, path) in [
+        "bench/peer/tasks/h7_reach_earth.toml",
+        "bench/peer/tasks/h13_twist_reach_earth.toml",
+        "examples/arm_lift_space_free.toml",
+    ]
+    .iter()
+    .enumerate()
+    {
+        let task = Task::load(&root.join(path)).unwrap();
+        let mut problem = Transcription::new(&task.spec).unwrap();
+        let dims = problem.dims();
+        let mut rng = Rng(40 + i as u64);
+        let x = rng.vec(dims.n, -0.5, 0.5);
+        let weights = [rng.vec(dims.n_res, -2.0, 2.0), rng.vec(dims.n_eq, -2.0, 2.0), rng.vec(dims.n_ineq, 0.0, 2.0)];
+        let w = [&weights[0][..], &weights[1][..], &weights[2][..]];
+        let mut term = |exact: bool| {
+            problem.set_exact_node_blocks(exact);
+            let mut target = SymmetricMatrix::dense(dims.n);
+            assert!(problem.add_second_order(&x, w, &mut target));
+            target.to_dense()
+        };
+        let (exact, differenced) = (term(true), term(false));
+        let scale = differenced.amax().max(1.0);
+        let worst = (&exact - &differenced).amax() / scale;
+        println!("{path}: {} unknowns, worst relative difference {worst:.1e}", dims.n);
+        assert!(worst < 1e-5, "{path}: exact blocks off the differenced ones by {worst:e} (scale {scale:e})");
+    }
 }

@@ -29,50 +29,89 @@ use super::Data;
 use crate::model::Model;
 use crate::spatial::{motion_cross_matrix, Force, Mat6, Motion};
 
-/// Scratch of [`rnea_velocity_hessian`], allocated once per model.
+/// Scratch of [`rnea_velocity_hessian`] and [`super::rnea_position_hessian`], allocated once per model: each
+/// body's `Ψ_b` and the subtree sums `P`, `K` (and `Q` of the position blocks).
 #[derive(Clone, Debug)]
 pub struct VelocityHessianWork {
-    psi: Vec<Motion>,
-    p: Vec<Force>,
-    k: Vec<Mat6>,
+    pub(super) psi: Vec<Motion>,
+    pub(super) p: Vec<Force>,
+    pub(super) q: Vec<Force>,
+    pub(super) k: Vec<Mat6>,
 }
 
 impl VelocityHessianWork {
     /// Scratch for the bodies of `model`.
     pub fn new(model: &Model) -> Self {
         let nb = model.bodies.len();
-        VelocityHessianWork { psi: vec![Motion::ZERO; nb], p: vec![Force::ZERO; nb], k: vec![Mat6::zeros(); nb] }
+        VelocityHessianWork {
+            psi: vec![Motion::ZERO; nb],
+            p: vec![Force::ZERO; nb],
+            q: vec![Force::ZERO; nb],
+            k: vec![Mat6::zeros(); nb],
+        }
     }
 }
 
-/// `∂²φ/∂q̇²` (module docs) at the placements in `data` (by [`super::kinematics::placements`] or any pass at
-/// this `q`: `data.S` and `data.oI` are read) into `out[m·stride + n]`, `m, n < nv` (every entry written).
-/// Needs a fixed-base tree with one DOF per joint.
-pub fn rnea_velocity_hessian(
+/// `Ψ_b = Ψ_λ(b) + ω_b S_b` (`Ψ₀ = u₀`) and the subtree sums `P_n = Σ_{b ⪰ n} I_b Ψ_b`,
+/// `K_n = Σ_{b ⪰ n} crm(Ψ_b)ᵀ I_b`, with `velocities` also `Q_n = Σ_{b ⪰ n} B_bᵀ Ψ_b`
+/// (`B_bᵀΨ = v_b ×* I_bΨ − Ψ ×* I_b v_b + I_b(Ψ × v_b)`: `Ψ·B_b x = x·B_bᵀΨ`; `data.v` read), leaves first.
+pub(super) fn weighted_sums(
     model: &Model,
     data: &Data,
     (omega, u0): (&[f64], &Motion),
     work: &mut VelocityHessianWork,
-    out: &mut [f64],
-    stride: usize,
+    velocities: bool,
 ) {
     let (nv, nb) = (model.nv(), model.bodies.len());
     assert!(nb == nv + 1 && omega.len() == nv && work.psi.len() == nb, "one DOF per body and matching sizes");
-    assert!(stride >= nv && out.len() >= (nv - 1) * stride + nv, "out holds an nv × nv block with this stride");
-    // Ψ_b = Ψ_λ(b) + ω_b S_b, Ψ₀ = u₀
     work.psi[0] = *u0;
     for b in 1..nb {
         work.psi[b] = work.psi[model.joints[b].parent].add_scaled(&data.S[b], omega[b - 1]);
     }
-    // P_b = I_b Ψ_b, K_b = crm(Ψ_b)ᵀ I_b: each body's own terms, made subtree sums leaves first.
-    for b in 1..nb {
-        work.p[b] = data.oI[b].mul(&work.psi[b]);
-        work.k[b] = motion_cross_matrix(&work.psi[b]).transpose() * data.oI[b].matrix();
+    for b in (1..nb).rev() {
+        let (psi, inertia) = (work.psi[b], &data.oI[b]);
+        work.p[b] += inertia.mul(&psi);
+        work.k[b] += motion_cross_matrix(&psi).transpose() * inertia.matrix();
+        if velocities {
+            let v = data.v[b];
+            work.q[b] += v.cross_force(&inertia.mul(&psi)) - psi.cross_force(&inertia.mul(&v)) + inertia.mul(&psi.cross(&v));
+        }
+        let parent = model.joints[b].parent;
+        if parent > 0 {
+            let (p, q, k) = (work.p[b], work.q[b], work.k[b]);
+            work.p[parent] += p;
+            work.q[parent] += q;
+            work.k[parent] += k;
+        }
     }
+}
+
+/// Clears the sums before [`weighted_sums`].
+pub(super) fn clear_sums(work: &mut VelocityHessianWork) {
+    work.p.fill(Force::ZERO);
+    work.q.fill(Force::ZERO);
+    work.k.fill(Mat6::zeros());
+}
+
+/// `∂²φ/∂q̇²` (module docs) at the placements in `data` (by [`super::kinematics::placements`] or any pass at
+/// this `q`: `data.S` and `data.oI` are read) into `out[m·stride + n]`, `m, n < nv` (every entry written).
+/// Needs a fixed-base tree with one DOF per joint (a free root's six joints count as six).
+pub fn rnea_velocity_hessian(
+    model: &Model,
+    data: &Data,
+    weights: (&[f64], &Motion),
+    work: &mut VelocityHessianWork,
+    out: &mut [f64],
+    stride: usize,
+) {
+    let nv = model.nv();
+    assert!(stride >= nv && out.len() >= (nv - 1) * stride + nv, "out holds an nv × nv block with this stride");
+    clear_sums(work);
+    weighted_sums(model, data, weights, work, false);
     for m in 0..nv {
         out[m * stride..m * stride + nv].fill(0.0);
     }
-    for n in (1..nb).rev() {
+    for n in 1..=nv {
         let s_n = data.S[n];
         // w_n = (K_n + K_nᵀ) S_n
         let (k, s) = (&work.k[n], s_n.to_vec6());
@@ -87,12 +126,6 @@ pub fn rnea_velocity_hessian(
             out[(m - 1) * stride + n - 1] = h;
             out[(n - 1) * stride + m - 1] = h;
             m = model.joints[m].parent;
-        }
-        let parent = model.joints[n].parent;
-        if parent > 0 {
-            let (p_n, k_n) = (work.p[n], work.k[n]);
-            work.p[parent] += p_n;
-            work.k[parent] += k_n;
         }
     }
 }

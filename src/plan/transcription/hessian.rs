@@ -28,9 +28,11 @@
 //! are linear and add nothing.
 
 use super::constraints::balance_coefficients;
+use super::hessian_mapping::Group;
 use super::node_gradient::Pass;
 use super::{IneqRow, Transcription};
 use crate::dynamics::rnea_gradient_moved::{restore, Moved, Subtrees};
+use crate::dynamics::rnea_position_hessian::rnea_position_hessian;
 use crate::dynamics::rnea_velocity_hessian::{rnea_velocity_hessian, VelocityHessianWork};
 use crate::dynamics::{kinematics, point_force::point_jacobian, Data};
 use crate::model::Model;
@@ -49,7 +51,7 @@ pub(super) struct HessianWork {
     grad: Vec<f64>,
     grad_perturbed: Vec<f64>,
     /// `∇²φ`, `d × d` row-major, `d = 3nv + n_λ`.
-    s: Vec<f64>,
+    pub(super) s: Vec<f64>,
     /// Per-node weights: `ω` (nv) and `ω_W`.
     pub(super) omega: Vec<f64>,
     /// The weights `ρ` of residuals `f(qᵢ, q̇ᵢ) τᵢ` whose factor varies (`strength.rs`), the direction
@@ -61,8 +63,8 @@ pub(super) struct HessianWork {
     /// The multipliers of a free root's momentum rows at the node (`root.rs`).
     pub(super) root_w: [f64; 6],
     /// The node's unknowns in groups, and one row of their entries (`add_mapped`).
-    groups: Vec<Group>,
-    row: Vec<f64>,
+    pub(super) groups: Vec<Group>,
+    pub(super) row: Vec<f64>,
     /// `ω̂ = ω + ρ f(q, q̇)`, the torques' weights at the state of a pass (`node_gradient.rs`).
     pub(super) omega_hat: Vec<f64>,
     /// The engine's pass at the node's state and its `∇(ω̂ᵀτ + u₀·W)` (`3nv`), the base of the moved passes;
@@ -73,6 +75,8 @@ pub(super) struct HessianWork {
     /// Scratch of the exact velocity block ([`rnea_velocity_hessian`]) and its weights.
     velocity: VelocityHessianWork,
     velocity_weights: Vec<f64>,
+    /// Whether the engine's exact blocks may replace differences ([`Transcription::set_exact_node_blocks`]).
+    exact_blocks: bool,
 }
 
 impl HessianWork {
@@ -98,11 +102,20 @@ impl HessianWork {
             subtrees: Subtrees::of(model),
             velocity: VelocityHessianWork::new(model),
             velocity_weights: vec![0.0; nv],
+            exact_blocks: true,
         }
     }
 }
 
 impl Transcription<'_> {
+    /// Whether each node's Hessian takes the engine's exact blocks where they apply
+    /// (`dynamics::rnea_velocity_hessian`, `dynamics::rnea_position_hessian`; the default) or differences the
+    /// exact gradient along every `qⱼ` and `q̇ⱼ` (the reference the tests and `benches/second_order.rs`
+    /// compare them with).
+    pub fn set_exact_node_blocks(&mut self, on: bool) {
+        self.hess.exact_blocks = on;
+    }
+
     /// `target += Σⱼ wⱼ ∇²cⱼ` at `x` (lower triangle), `weights = [w_r, w_h, w_g]` the rows' weights.
     /// Only for the `½∫τᵀWτ` objective (the caller checks).
     pub(super) fn add_second_order_term(&mut self, x: &[f64], weights: [&[f64]; 3], target: &mut SymmetricMatrix) {
@@ -210,7 +223,14 @@ impl Transcription<'_> {
         if velocity_exact {
             self.add_velocity_block();
         }
-        let columns = if velocity_exact { nv } else { 2 * nv };
+        let columns = if self.position_blocks_exact() {
+            self.add_position_blocks();
+            0
+        } else if velocity_exact {
+            nv
+        } else {
+            2 * nv
+        };
         for j in 0..columns {
             if free && self.moves_the_whole_figure(j) {
                 continue;
@@ -266,7 +286,24 @@ impl Transcription<'_> {
     /// weights `ω̃` of `q` alone (its root rows' momenta `H q̇` are linear).
     fn velocity_block_exact(&self) -> bool {
         let contracted = self.free.dofs.is_empty() || self.free.root_factor.is_some();
-        contracted && self.spec.strength.is_none() && self.hess.rho.iter().all(|r| *r == 0.0)
+        self.hess.exact_blocks && contracted && self.spec.strength.is_none() && self.hess.rho.iter().all(|r| *r == 0.0)
+    }
+
+    /// Whether the `q` columns are the engine's exact blocks ([`rnea_position_hessian`]) too: a fixed-base
+    /// tree with no loads or contact forces on it (point forces of fixed world direction do not turn with the
+    /// bodies) and the velocity block exact.
+    fn position_blocks_exact(&self) -> bool {
+        self.free.dofs.is_empty() && self.spec.loads.is_empty() && self.spec.contacts.is_empty() && self.velocity_block_exact()
+    }
+
+    /// The `q`, `q̇`, `q̈` rows of the `q` columns of `hess.s` (and their transposes) from
+    /// [`rnea_position_hessian`] at the node's base pass (in `data`), with its weights `ω̂`, `u₀ = ω_W`.
+    fn add_position_blocks(&mut self) {
+        let d = 3 * self.layout.nv + self.layout.n_lambda;
+        let h = &mut self.hess;
+        let ow = &h.omega_w;
+        let u0 = Motion::new(Vec3::new(ow[0], ow[1], ow[2]), Vec3::new(ow[3], ow[4], ow[5]));
+        rnea_position_hessian(&self.spec.model, &self.data, (&h.omega_hat, &u0), &mut h.velocity, &mut h.s, d);
     }
 
     /// The `q̇`–`q̇` block of `hess.s` from [`rnea_velocity_hessian`] at the placements of the node's base pass
@@ -367,96 +404,5 @@ impl Transcription<'_> {
                 }
             }
         }
-    }
-
-    /// `target += Bᵀ S B` for the node with `basis`, `S = hess.s`; `blocks` = how many of `q, q̇, q̈` the
-    /// rows depend on (3 at the quadrature nodes, 1 for the closures, which have no `λ` either).
-    ///
-    /// The node's unknowns come in groups, in the order of their columns: each control point's block of `nv`
-    /// joints (`∂z/∂x = (b, ḃ, b̈)` times the identity; a point sharing its owner's unknowns adds its basis
-    /// functions to the owner's) and its `n_λ` forces (`∂λ/∂x = b·λ_scale`). The entry of unknowns
-    /// `u = (U, i)`, `v = (V, j)` is `Σ_p Σ_q c_U,p c_V,q S[p·nv + i][q·nv + j]`, for `V` up to `U`.
-    pub(super) fn add_mapped(&mut self, basis: &BasisAt, blocks: usize, target: &mut SymmetricMatrix) {
-        let (nv, nl) = (self.layout.nv, self.layout.n_lambda);
-        let d = 3 * nv + nl;
-        let h = &mut self.hess;
-        h.groups.clear();
-        for a in 0..4 {
-            let j = basis.first + a;
-            if let Some(col) = self.layout.joint_var(j, 0) {
-                let coef = [basis.b[a], basis.db[a], basis.ddb[a]];
-                match h.groups.iter_mut().find(|g| g.joints && g.col == col) {
-                    Some(owner) => owner.coef.iter_mut().zip(coef).for_each(|(o, c)| *o += c),
-                    None => h.groups.push(Group { joints: true, col, coef }),
-                }
-            }
-            if blocks == 3 && nl > 0 {
-                let col = self.layout.lambda_var(j, 0);
-                h.groups.push(Group { joints: false, col, coef: [basis.b[a] * self.layout.lambda_scale, 0.0, 0.0] });
-            }
-        }
-        let sizes = Sizes { d, nv, blocks };
-        for (u, gu) in h.groups.iter().enumerate() {
-            for (v, gv) in h.groups[..=u].iter().enumerate() {
-                add_group_pair(&h.s, sizes, (gu, gv, u == v), &mut h.row, target);
-            }
-        }
-    }
-}
-
-/// A group of a node's unknowns (see [`Transcription::add_mapped`]): `nv` joints or `n_λ` forces from
-/// column `col`, with their `∂z/∂x` coefficients.
-#[derive(Clone, Copy, Debug)]
-struct Group {
-    joints: bool,
-    col: usize,
-    coef: [f64; 3],
-}
-
-impl Group {
-    /// The group's size, its `(first z index, coefficient)` terms (`blocks` of them for joints, one for
-    /// forces: `z = (q, q̇, q̈, λ)`).
-    fn terms(&self, nv: usize, nl: usize, blocks: usize) -> (usize, [(usize, f64); 3], usize) {
-        if self.joints {
-            (nv, [(0, self.coef[0]), (nv, self.coef[1]), (2 * nv, self.coef[2])], blocks)
-        } else {
-            (nl, [(3 * nv, self.coef[0]), (0, 0.0), (0, 0.0)], 1)
-        }
-    }
-}
-
-/// The node's `d = 3nv + n_λ`, `nv`, and how many of `q, q̇, q̈` the rows depend on.
-#[derive(Clone, Copy, Debug)]
-struct Sizes {
-    d: usize,
-    nv: usize,
-    blocks: usize,
-}
-
-/// `target += ` the entries of the unknowns of group `gu` against those of `gv` (each unordered pair once:
-/// within one group, `j ≤ i`), `value(i, j) = Σ_p Σ_q (c_p c_q) S[z_p + i][z_q + j]` summed in that order.
-fn add_group_pair(
-    s: &[f64],
-    sizes: Sizes,
-    (gu, gv, same): (&Group, &Group, bool),
-    row: &mut [f64],
-    target: &mut SymmetricMatrix,
-) {
-    let Sizes { d, nv, blocks } = sizes;
-    let nl = d - 3 * nv;
-    let (size_u, terms_u, nu) = gu.terms(nv, nl, blocks);
-    let (size_v, terms_v, nvv) = gv.terms(nv, nl, blocks);
-    for i in 0..size_u {
-        let width = if same { i + 1 } else { size_v };
-        let row = &mut row[..width];
-        row.fill(0.0);
-        for &(zu, cu) in &terms_u[..nu] {
-            let s_row = &s[(zu + i) * d..(zu + i + 1) * d];
-            for &(zv, cv) in &terms_v[..nvv] {
-                let c = cu * cv;
-                row.iter_mut().zip(&s_row[zv..zv + width]).for_each(|(r, s)| *r += c * s);
-            }
-        }
-        target.add_row_run(gu.col + i, gv.col, row);
     }
 }
