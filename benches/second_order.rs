@@ -2,7 +2,8 @@
 //! the interior point refreshes it): the node Hessians from the engine's exact blocks
 //! (`dynamics::rnea_velocity_hessian`, `dynamics::rnea_position_hessian`) against the same term with every
 //! `q` and `q̇` column differenced (`Transcription::set_exact_node_blocks(false)`), in one run, on the peer
-//! suite's human figures at their initial guess with unit weights on every row.
+//! suite's human figures and three bundled examples with point forces (a payload, the hands on the floor, the
+//! 3D stoop's box) at their initial guess with unit weights on every row.
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use mintorque::plan::{initial_x, task::Task, Transcription};
@@ -13,8 +14,18 @@ use std::path::Path;
 fn second_order(c: &mut Criterion) {
     let mut group = c.benchmark_group("second_order");
     group.sample_size(20);
-    for name in ["h7_reach_earth", "h13_twist_reach_earth", "h21_two_arm_raise_earth", "h36_wave_step_earth"] {
-        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("bench/peer/tasks").join(format!("{name}.toml"));
+    let tasks = [
+        "bench/peer/tasks/h7_reach_earth",
+        "bench/peer/tasks/h13_twist_reach_earth",
+        "bench/peer/tasks/h21_two_arm_raise_earth",
+        "bench/peer/tasks/h36_wave_step_earth",
+        "examples/weight_lift_earth",
+        "examples/push_up",
+        "examples/lift_stoop_3d",
+    ];
+    for task_path in tasks {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("{task_path}.toml"));
+        let name = task_path.rsplit('/').next().unwrap_or(task_path);
         let task = Task::load(&path).unwrap();
         let mut problem = Transcription::new(&task.spec).unwrap();
         let x = initial_x(&task.spec, &mut problem).unwrap();

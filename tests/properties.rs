@@ -11,6 +11,7 @@ use mintorque::dynamics::{
     aba::aba,
     crba::crba,
     kinematics,
+    point_force::{path_dofs, point_force_hessian, point_force_mixed},
     rnea::rnea,
     rnea_derivatives::rnea_derivatives,
     rnea_gradient::rnea_gradient,
@@ -247,6 +248,62 @@ proptest! {
                 prop_assert!((exact - fd[(r, m)]).abs() <= 1e-6 * scale, "row {r}, column q{m}: {exact} against {} (scale {scale:e})", fd[(r, m)]);
                 prop_assert!(exact == mirror, "row {r}, column {m} not mirrored");
             }
+        }
+    }
+
+    /// The Hessian along `q` of a fixed world force's weighted torques `φ_f = −Ψ_b·[p × f; f]` (and its
+    /// mixed column along a force direction) against central second differences of `φ_f` itself.
+    #[test]
+    fn point_force_hessian_matches_differences(seed in any::<u64>(), n in 1usize..=30) {
+        let model = random_tree(seed, n);
+        let mut data = Data::new(&model);
+        let (q, v, a) = state(seed, n);
+        let (omega, u0) = random_weights(seed ^ 0x11, n);
+        let mut rng = Rng(seed ^ 0x1234);
+        let body = 1 + (rng.next_u64() as usize) % n;
+        let local = Vec3::new(rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3));
+        let f = Vec3::new(rng.uniform(-5.0, 5.0), rng.uniform(-5.0, 5.0), rng.uniform(-5.0, 5.0));
+        let path = path_dofs(&model, body);
+        let psi = |data: &Data| path.iter().fold(u0, |u, &i| u.add_scaled(&data.S[i + 1], omega[i]));
+        // φ_f(q) and ∂φ_f/∂f = −(Ψ_v + Ψ_ω × p)
+        let mut phi = |data: &mut Data, q: &[f64], force: &Vec3| {
+            kinematics::placements(&model, data, q);
+            let p = data.oMi[body].act_point(&local);
+            let w = psi(data);
+            -(force.dot(&w.v) + w.w.dot(&p.cross(force)))
+        };
+        let h = 1e-4;
+        let mut fd = DMatrix::zeros(n, n);
+        let mut fd_mixed = vec![0.0; n];
+        for i in 0..n {
+            for j in 0..n {
+                let mut at = |di: f64, dj: f64| {
+                    let mut x = q.clone();
+                    x[i] += di;
+                    x[j] += dj;
+                    phi(&mut data, &x, &f)
+                };
+                fd[(i, j)] = (at(h, h) - at(h, -h) - at(-h, h) + at(-h, -h)) / (4.0 * h * h);
+            }
+            let (mut plus, mut minus) = (q.clone(), q.clone());
+            plus[i] += h;
+            minus[i] -= h;
+            let e = f / f.norm();
+            fd_mixed[i] = (phi(&mut data, &plus, &e) - phi(&mut data, &minus, &e)) / (2.0 * h);
+        }
+        let (mut g_q, mut g_v, mut g_a) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        rnea_gradient(&model, &mut data, (&q, &v, &a), &G, None, &omega, &u0, (&mut g_q, &mut g_v, &mut g_a));
+        let p = data.oMi[body].act_point(&local);
+        let mut exact = vec![0.0; n * n];
+        point_force_hessian(&data, &path, (&p, &f), &psi(&data), &mut exact, n);
+        let mut mixed = vec![0.0; n];
+        point_force_mixed(&data, &path, (&p, &(f / f.norm())), &psi(&data), &mut mixed);
+        let scale = fd.amax().max(1.0);
+        for i in 0..n {
+            for j in 0..n {
+                prop_assert!((exact[i * n + j] - fd[(i, j)]).abs() <= 1e-5 * scale, "[{i}][{j}]: {} against {}", exact[i * n + j], fd[(i, j)]);
+            }
+            prop_assert!((mixed[i] - fd_mixed[i]).abs() <= 1e-6 * scale, "mixed [{i}]: {} against {}", mixed[i], fd_mixed[i]);
         }
     }
 

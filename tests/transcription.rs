@@ -345,8 +345,9 @@ fn free_root_posture_goal_holds_the_joints_not_the_root() {
     assert_eq!(g.iter().filter(|g| **g > 0.0).count(), 1);
 }
 
-/// On the human figures of the peer suite and a free-floating bundled example, the node Hessians from the
-/// engine's exact blocks (`rnea_velocity_hessian`, `rnea_position_hessian`) against the same term with every
+/// On the human figures of the peer suite and bundled examples — free-floating, with a payload, with the hands
+/// on the floor (contact forces) —, the node Hessians from the engine's exact blocks (`rnea_velocity_hessian`,
+/// `rnea_position_hessian`, `point_force_hessian`) against the same term with every
 /// `q` and `q̇` column differenced: the same matrix to the differences' error, at a random point with random
 /// weights on every row.
 #[test]
@@ -358,6 +359,8 @@ fn exact_node_blocks_agree_with_the_differenced_ones_on_the_human_figures() {
         "bench/peer/tasks/h7_reach_earth.toml",
         "bench/peer/tasks/h13_twist_reach_earth.toml",
         "examples/arm_lift_space_free.toml",
+        "examples/weight_lift_earth.toml",
+        "examples/push_up.toml",
     ]
     .iter()
     .enumerate()

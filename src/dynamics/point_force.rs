@@ -12,7 +12,7 @@
 
 use super::Data;
 use crate::model::Model;
-use crate::spatial::{Force, Vec3};
+use crate::spatial::{Force, Motion, Vec3};
 
 /// The dofs on the path from the root to `body`, root first.
 pub fn path_dofs(model: &Model, body: usize) -> Vec<usize> {
@@ -58,5 +58,54 @@ pub fn generalized_force_derivative(data: &Data, path: &[usize], p: &Vec3, lambd
             let turn = if c < r { -s_k.dot(&sj_f) } else { 0.0 };
             out[r * m + c] = turn + s_k.w.dot(&moment);
         }
+    }
+}
+
+/// `v + ω × p`: the velocity of the world point `p` under the twist `x`.
+#[inline]
+fn point_velocity(x: &Motion, p: &Vec3) -> Vec3 {
+    x.v + x.w.cross(p)
+}
+
+/// The Hessian along `q` of `φ_f = −Ψ_b · [p × f; f] = −f · (Ψ_b,v + Ψ_b,ω × p)`, the weighted torques (and
+/// root wrench) a fixed world force `f` at the point `p` of body `b` adds to `ωᵀτ + u₀·W`, with
+/// `Ψ_b = u₀ + Σ_{i ⪯ b} ωᵢSᵢ` (`psi_b`) and `ψ_m = U_m × S_m` from `data.Uw` (a gradient pass with the same
+/// weights). With `V = Ψ_b,v + Ψ_b,ω × p`, `s_m = S_m,ω`, `ṗ_n = S_n,v + s_n × p`, moving `q_m` gives
+/// `∂φ_f/∂q_m = −f·(V(ψ_m) + s_m × V)`, and for `n ⪯ m` on the path
+///
+/// ```text
+///   ∂²φ_f/∂q_n∂q_m = −f · [V(S_n × ψ_m + ψ_n × S_m) + ψ_m,ω × ṗ_n + (s_n × s_m) × V + s_m × (V(ψ_n) + s_n × V)]
+/// ```
+///
+/// (`V(x) = x_v + x_ω × p`), added (`+=`) into `out[n·stride + m]` and `out[m·stride + n]` for the path's
+/// dofs `n`, `m`.
+pub fn point_force_hessian(data: &Data, path: &[usize], (p, f): (&Vec3, &Vec3), psi_b: &Motion, out: &mut [f64], stride: usize) {
+    let v_b = point_velocity(psi_b, p);
+    for (c, &m) in path.iter().enumerate() {
+        let s_m = data.S[m + 1];
+        let psi_m = data.Uw[m + 1].cross(&s_m);
+        for &n in &path[..=c] {
+            let s_n = data.S[n + 1];
+            let psi_n = data.Uw[n + 1].cross(&s_n);
+            let p_dot = point_velocity(&s_n, p);
+            let turned = point_velocity(&(s_n.cross(&psi_m) + psi_n.cross(&s_m)), p) + psi_m.w.cross(&p_dot);
+            let axis = s_n.w.cross(&s_m.w).cross(&v_b) + s_m.w.cross(&(point_velocity(&psi_n, p) + s_n.w.cross(&v_b)));
+            let h = -f.dot(&(turned + axis));
+            out[n * stride + m] += h;
+            if n != m {
+                out[m * stride + n] += h;
+            }
+        }
+    }
+}
+
+/// `∂²φ_f/∂f_e∂q_m = −e·(V(ψ_m) + s_m × V)` for a unit force direction `e` (see [`point_force_hessian`]): the
+/// column of a contact force's component, added into `out[m]` for the path's dofs `m`.
+pub fn point_force_mixed(data: &Data, path: &[usize], (p, e): (&Vec3, &Vec3), psi_b: &Motion, out: &mut [f64]) {
+    let v_b = point_velocity(psi_b, p);
+    for &m in path {
+        let s_m = data.S[m + 1];
+        let psi_m = data.Uw[m + 1].cross(&s_m);
+        out[m] -= e.dot(&(point_velocity(&psi_m, p) + s_m.w.cross(&v_b)));
     }
 }

@@ -34,6 +34,7 @@ use super::constraints::balance_coefficients;
 use super::hessian_mapping::Group;
 use super::node_gradient::Pass;
 use super::{IneqRow, Transcription};
+use crate::dynamics::point_force::{point_force_hessian, point_force_mixed};
 use crate::dynamics::rnea_gradient_moved::{restore, Moved, Subtrees};
 use crate::dynamics::rnea_position_hessian::rnea_position_hessian;
 use crate::dynamics::rnea_velocity_hessian::{rnea_velocity_hessian, VelocityHessianWork};
@@ -292,11 +293,11 @@ impl Transcription<'_> {
         self.hess.exact_blocks && contracted && self.spec.strength.is_none() && self.hess.rho.iter().all(|r| *r == 0.0)
     }
 
-    /// Whether the `q` columns are the engine's exact blocks ([`rnea_position_hessian`]) too: a fixed-base
-    /// tree with no loads or contact forces on it (point forces of fixed world direction do not turn with the
-    /// bodies) and the velocity block exact.
+    /// Whether the `q` columns are the engine's exact blocks ([`rnea_position_hessian`], and
+    /// [`point_force_hessian`] for the loads and contact forces) too: a fixed-base tree and the velocity block
+    /// exact.
     fn position_blocks_exact(&self) -> bool {
-        self.free.dofs.is_empty() && self.spec.loads.is_empty() && self.spec.contacts.is_empty() && self.velocity_block_exact()
+        self.free.dofs.is_empty() && self.velocity_block_exact()
     }
 
     /// The `q`, `q̇`, `q̈` rows of the `q` columns of `hess.s` (and their transposes) from
@@ -307,6 +308,39 @@ impl Transcription<'_> {
         let ow = &h.omega_w;
         let u0 = Motion::new(Vec3::new(ow[0], ow[1], ow[2]), Vec3::new(ow[3], ow[4], ow[5]));
         rnea_position_hessian(&self.spec.model, &self.data, (&h.omega_hat, &u0), &mut h.velocity, &mut h.s, d);
+        self.add_point_force_blocks(&u0);
+    }
+
+    /// The loads' and contact forces' part of the `q` columns: `φ_f = −Ψ_b·[p × f; f]` of each
+    /// ([`point_force_hessian`]; `Ψ_b = u₀ + Σ_path ω̂ᵢSᵢ`), and each contact force component's `λ` row
+    /// ([`point_force_mixed`]), at the base pass's placements.
+    fn add_point_force_blocks(&mut self, u0: &Motion) {
+        let (spec, nv) = (self.spec, self.layout.nv);
+        let d = 3 * nv + self.layout.n_lambda;
+        let (data, h, w) = (&self.data, &mut self.hess, &self.work);
+        let psi = |path: &[usize]| path.iter().fold(*u0, |u, &i| u.add_scaled(&data.S[i + 1], h.omega_hat[i]));
+        for (l, load) in spec.loads.iter().enumerate() {
+            let p = kinematics::frame_placement(&spec.model, data, load.frame).translation;
+            let path = &self.load_paths[l];
+            point_force_hessian(data, path, (&p, &load.force), &psi(path), &mut h.s, d);
+        }
+        for (c, contact) in spec.contacts.iter().enumerate() {
+            let info = &self.contacts[c];
+            let p = kinematics::frame_placement(&spec.model, data, contact.frame).translation;
+            let f = info.directions.iter().enumerate().fold(Vec3::zeros(), |f, (m, e)| f + e * w.lambda[info.offset + m]);
+            let psi_b = psi(&info.path);
+            point_force_hessian(data, &info.path, (&p, &f), &psi_b, &mut h.s, d);
+            for (m, e) in info.directions.iter().enumerate() {
+                let row = 3 * nv + info.offset + m;
+                let column = &mut h.row[..nv];
+                column.fill(0.0);
+                point_force_mixed(data, &info.path, (&p, e), &psi_b, column);
+                for (k, v) in column.iter().enumerate() {
+                    h.s[row * d + k] += v;
+                    h.s[k * d + row] += v;
+                }
+            }
+        }
     }
 
     /// The `q̇`–`q̇` block of `hess.s` from [`rnea_velocity_hessian`] at the placements of the node's base pass
