@@ -32,7 +32,8 @@
 //! `∂²φ/∂q̈_k∂q_m = S_k·∂P`; `m ≺ k`: `∂²φ/∂q̇_k∂q_m = 2(Ṡ_m × S_k)·P_k + 2Ṡ_k·Y_kψ_m + S_k·δQ_k`,
 //! `∂²φ/∂q̈_k∂q_m = S_k·Y_kψ_m` (the `q`–`q` entries by symmetry). Joints on different branches give zero.
 //! The planner's exact second-order term (`plan/transcription/hessian.rs`) takes these blocks instead of
-//! differencing `∇φ` along each `q_m` where the node has no point forces and no strength terms.
+//! differencing `∇φ` along each `q_m` where the node has a fixed base and no strength terms; the loads and
+//! contact forces, which do not turn with the bodies, add their own terms ([`super::point_force::point_force_hessian`]).
 
 use super::rnea_velocity_hessian::{clear_sums, weighted_sums, VelocityHessianWork};
 use super::Data;

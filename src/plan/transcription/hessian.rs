@@ -12,9 +12,10 @@
 //!
 //! `Bₖ` the chain rule of eq. 33 (the four basis functions and their derivatives; `hessian_mapping.rs`). `∇φₖ`
 //! is exact and costs one O(nv) contracted pass of the engine (`node_gradient.rs`, `dynamics::rnea_gradient`).
-//! Where the node has no point forces (loads, contact forces), no strength terms and a fixed base, `∇²φₖ`'s
-//! `q` columns and `q̇`–`q̇` block are exact from two O(nv·depth) passes (`dynamics::rnea_position_hessian`,
-//! `dynamics::rnea_velocity_hessian`) and nothing is differenced. Elsewhere `∇²φₖ` is the gradient's
+//! Where the node has no strength terms and a fixed base, `∇²φₖ`'s `q` columns and `q̇`–`q̇` block are exact
+//! from two O(nv·depth) passes (`dynamics::rnea_position_hessian`, `dynamics::rnea_velocity_hessian`) and the
+//! loads' and contact forces' own terms (`dynamics::point_force::point_force_hessian`), and nothing is
+//! differenced. Elsewhere `∇²φₖ` is the gradient's
 //! forward difference along each `qᵢ` — `nv` such passes at one node, each recomputing only the moved
 //! joint's subtree (`dynamics::rnea_gradient_moved`; whole passes for a free root, whose three translations
 //! have zero columns) —, the `q̇`–`q̇` block exact
