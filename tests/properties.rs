@@ -223,7 +223,7 @@ proptest! {
         let mut data = Data::new(&model);
         let (q, v, a) = state(seed, n);
         let (omega, u0) = random_weights(seed ^ 0x33, n);
-        let mut gradient = |data: &mut Data, q: &[f64]| {
+        let gradient = |data: &mut Data, q: &[f64]| {
             let (mut g_q, mut g_v, mut g_a) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
             rnea_gradient(&model, data, (q, &v, &a), &G, None, &omega, &u0, (&mut g_q, &mut g_v, &mut g_a));
             [g_q, g_v, g_a].concat()
@@ -266,7 +266,7 @@ proptest! {
         let path = path_dofs(&model, body);
         let psi = |data: &Data| path.iter().fold(u0, |u, &i| u.add_scaled(&data.S[i + 1], omega[i]));
         // φ_f(q) and ∂φ_f/∂f = −(Ψ_v + Ψ_ω × p)
-        let mut phi = |data: &mut Data, q: &[f64], force: &Vec3| {
+        let phi = |data: &mut Data, q: &[f64], force: &Vec3| {
             kinematics::placements(&model, data, q);
             let p = data.oMi[body].act_point(&local);
             let w = psi(data);

@@ -35,7 +35,7 @@
 //! differencing `∇φ` along each `q_m` where the node has a fixed base and no strength terms; the loads and
 //! contact forces, which do not turn with the bodies, add their own terms ([`super::point_force::point_force_hessian`]).
 
-use super::rnea_velocity_hessian::{clear_sums, weighted_sums, VelocityHessianWork};
+use super::rnea_velocity_hessian::{weighted_sums, VelocityHessianWork};
 use super::Data;
 use crate::model::Model;
 use crate::spatial::{Force, Motion};
@@ -55,7 +55,6 @@ pub fn rnea_position_hessian(
 ) {
     let nv = model.nv();
     assert!(stride >= 3 * nv && out.len() >= (3 * nv - 1) * stride + 3 * nv, "out holds the 3nv × 3nv blocks");
-    clear_sums(work);
     weighted_sums(model, data, weights, work, true);
     for r in 0..3 * nv {
         out[r * stride..r * stride + nv].fill(0.0);

@@ -64,6 +64,9 @@ pub(super) fn weighted_sums(
 ) {
     let (nv, nb) = (model.nv(), model.bodies.len());
     assert!(nb == nv + 1 && omega.len() == nv && work.psi.len() == nb, "one DOF per body and matching sizes");
+    work.p.fill(Force::ZERO);
+    work.q.fill(Force::ZERO);
+    work.k.fill(Mat6::zeros());
     work.psi[0] = *u0;
     for b in 1..nb {
         work.psi[b] = work.psi[model.joints[b].parent].add_scaled(&data.S[b], omega[b - 1]);
@@ -86,13 +89,6 @@ pub(super) fn weighted_sums(
     }
 }
 
-/// Clears the sums before [`weighted_sums`].
-pub(super) fn clear_sums(work: &mut VelocityHessianWork) {
-    work.p.fill(Force::ZERO);
-    work.q.fill(Force::ZERO);
-    work.k.fill(Mat6::zeros());
-}
-
 /// `∂²φ/∂q̇²` (module docs) at the placements in `data` (by [`super::kinematics::placements`] or any pass at
 /// this `q`: `data.S` and `data.oI` are read) into `out[m·stride + n]`, `m, n < nv` (every entry written).
 /// Needs a fixed-base tree with one DOF per joint (a free root's six joints count as six).
@@ -106,7 +102,6 @@ pub fn rnea_velocity_hessian(
 ) {
     let nv = model.nv();
     assert!(stride >= nv && out.len() >= (nv - 1) * stride + nv, "out holds an nv × nv block with this stride");
-    clear_sums(work);
     weighted_sums(model, data, weights, work, false);
     for m in 0..nv {
         out[m * stride..m * stride + nv].fill(0.0);

@@ -35,14 +35,11 @@ use super::constraints::balance_coefficients;
 use super::hessian_mapping::Group;
 use super::node_gradient::Pass;
 use super::{IneqRow, Transcription};
-use crate::dynamics::point_force::{point_force_hessian, point_force_mixed};
 use crate::dynamics::rnea_gradient_moved::{restore, Moved, Subtrees};
-use crate::dynamics::rnea_position_hessian::rnea_position_hessian;
-use crate::dynamics::rnea_velocity_hessian::{rnea_velocity_hessian, VelocityHessianWork};
+use crate::dynamics::rnea_velocity_hessian::VelocityHessianWork;
 use crate::dynamics::{kinematics, point_force::point_jacobian, Data};
 use crate::model::Model;
 use crate::solve::SymmetricMatrix;
-use crate::spatial::{Motion, Vec3};
 use crate::trajectory::bspline::BasisAt;
 
 /// Relative step of the forward differences: `ε = STEP·(1 + |zᵢ|)`, about √(machine ε).
@@ -78,10 +75,10 @@ pub(super) struct HessianWork {
     pub(super) base_gradient: Vec<f64>,
     pub(super) subtrees: Subtrees,
     /// Scratch of the exact velocity block ([`rnea_velocity_hessian`]) and its weights.
-    velocity: VelocityHessianWork,
-    velocity_weights: Vec<f64>,
+    pub(super) velocity: VelocityHessianWork,
+    pub(super) velocity_weights: Vec<f64>,
     /// Whether the engine's exact blocks may replace differences ([`Transcription::set_exact_node_blocks`]).
-    exact_blocks: bool,
+    pub(super) exact_blocks: bool,
 }
 
 impl HessianWork {
@@ -113,14 +110,6 @@ impl HessianWork {
 }
 
 impl Transcription<'_> {
-    /// Whether each node's Hessian takes the engine's exact blocks where they apply
-    /// (`dynamics::rnea_velocity_hessian`, `dynamics::rnea_position_hessian`; the default) or differences the
-    /// exact gradient along every `qⱼ` and `q̇ⱼ` (the reference the tests and `benches/second_order.rs`
-    /// compare them with).
-    pub fn set_exact_node_blocks(&mut self, on: bool) {
-        self.hess.exact_blocks = on;
-    }
-
     /// `target += Σⱼ wⱼ ∇²cⱼ` at `x` (lower triangle), `weights = [w_r, w_h, w_g]` the rows' weights.
     /// Only for the `½∫τᵀWτ` objective (the caller checks).
     pub(super) fn add_second_order_term(&mut self, x: &[f64], weights: [&[f64]; 3], target: &mut SymmetricMatrix) {
@@ -254,16 +243,6 @@ impl Transcription<'_> {
         self.hess.grad_perturbed = perturbed;
     }
 
-    /// Whether `qⱼ` translates a free figure as a whole (its root's prismatic joints): the node's `φ` does not
-    /// depend on it (joint torques, the root rows' forces and momenta about the root's own axes, point forces of
-    /// fixed directions and uniform gravity do not change when everything moves by the same offset; a free
-    /// figure has no balance rows), so its column of `∇²φ` is zero.
-    fn moves_the_whole_figure(&self, j: usize) -> bool {
-        j < self.layout.nv
-            && self.free.dofs.contains(&j)
-            && self.spec.model.joints[j + 1].kind == crate::model::JointKind::Prismatic
-    }
-
     /// Column `j` (a `q` or `q̇` column) of `hess.s` from the difference of `∇φ`, and row `j` by symmetry for
     /// the other blocks. The `q`/`q̇` block is symmetrised (half from each side), except the `q̇` rows when the
     /// velocity block is exact: there the `q` columns alone give the `q̇`–`q` entries.
@@ -282,88 +261,6 @@ impl Transcription<'_> {
                 s[j * d + i] = v;
             }
         }
-    }
-
-    /// Whether `∂²φ/∂q̇²` is the engine's exact block ([`rnea_velocity_hessian`]) after the node's base pass:
-    /// the weights `ω̂` do not depend on the state (no strength terms), so that `φ = ω̂ᵀτ + ω_W·W` with `τ`'s
-    /// other parts (passive torques, loads, contact forces) at most linear in `q̇`; for a free body the
-    /// contracted gradient was used (`H_rr` regular: `root_gradient.rs`), whose `q̇` dependence is `ω̃ᵀτ` at
-    /// weights `ω̃` of `q` alone (its root rows' momenta `H q̇` are linear).
-    fn velocity_block_exact(&self) -> bool {
-        let contracted = self.free.dofs.is_empty() || self.free.root_factor.is_some();
-        self.hess.exact_blocks && contracted && self.spec.strength.is_none() && self.hess.rho.iter().all(|r| *r == 0.0)
-    }
-
-    /// Whether the `q` columns are the engine's exact blocks ([`rnea_position_hessian`], and
-    /// [`point_force_hessian`] for the loads and contact forces) too: a fixed-base tree and the velocity block
-    /// exact.
-    fn position_blocks_exact(&self) -> bool {
-        self.free.dofs.is_empty() && self.velocity_block_exact()
-    }
-
-    /// The `q`, `q̇`, `q̈` rows of the `q` columns of `hess.s` (and their transposes) from
-    /// [`rnea_position_hessian`] at the node's base pass (in `data`), with its weights `ω̂`, `u₀ = ω_W`.
-    fn add_position_blocks(&mut self) {
-        let d = 3 * self.layout.nv + self.layout.n_lambda;
-        let h = &mut self.hess;
-        let ow = &h.omega_w;
-        let u0 = Motion::new(Vec3::new(ow[0], ow[1], ow[2]), Vec3::new(ow[3], ow[4], ow[5]));
-        rnea_position_hessian(&self.spec.model, &self.data, (&h.omega_hat, &u0), &mut h.velocity, &mut h.s, d);
-        self.add_point_force_blocks(&u0);
-    }
-
-    /// The loads' and contact forces' part of the `q` columns: `φ_f = −Ψ_b·[p × f; f]` of each
-    /// ([`point_force_hessian`]; `Ψ_b = u₀ + Σ_path ω̂ᵢSᵢ`), and each contact force component's `λ` row
-    /// ([`point_force_mixed`]), at the base pass's placements.
-    fn add_point_force_blocks(&mut self, u0: &Motion) {
-        let (spec, nv) = (self.spec, self.layout.nv);
-        let d = 3 * nv + self.layout.n_lambda;
-        let (data, h, w) = (&self.data, &mut self.hess, &self.work);
-        let psi = |path: &[usize]| path.iter().fold(*u0, |u, &i| u.add_scaled(&data.S[i + 1], h.omega_hat[i]));
-        for (l, load) in spec.loads.iter().enumerate() {
-            let p = kinematics::frame_placement(&spec.model, data, load.frame).translation;
-            let path = &self.load_paths[l];
-            point_force_hessian(data, path, (&p, &load.force), &psi(path), &mut h.s, d);
-        }
-        for (c, contact) in spec.contacts.iter().enumerate() {
-            let info = &self.contacts[c];
-            let p = kinematics::frame_placement(&spec.model, data, contact.frame).translation;
-            let f = info.directions.iter().enumerate().fold(Vec3::zeros(), |f, (m, e)| f + e * w.lambda[info.offset + m]);
-            let psi_b = psi(&info.path);
-            point_force_hessian(data, &info.path, (&p, &f), &psi_b, &mut h.s, d);
-            for (m, e) in info.directions.iter().enumerate() {
-                let row = 3 * nv + info.offset + m;
-                let column = &mut h.row[..nv];
-                column.fill(0.0);
-                point_force_mixed(data, &info.path, (&p, e), &psi_b, column);
-                for (k, v) in column.iter().enumerate() {
-                    h.s[row * d + k] += v;
-                    h.s[k * d + row] += v;
-                }
-            }
-        }
-    }
-
-    /// The `q̇`–`q̇` block of `hess.s` from [`rnea_velocity_hessian`] at the placements of the node's base pass
-    /// (in `data`), with that pass's weights: `ω̂` and `u₀ = ω_W`, or a free body's first-pass weights `ω̃`
-    /// (plus the root rows' where they are its forces: `root_gradient.rs`), `u₀ = 0`.
-    fn add_velocity_block(&mut self) {
-        let nv = self.layout.nv;
-        let d = 3 * nv + self.layout.n_lambda;
-        let (f, h) = (&self.free, &mut self.hess);
-        let u0 = if f.dofs.is_empty() {
-            h.velocity_weights.copy_from_slice(&h.omega_hat);
-            let ow = &h.omega_w;
-            Motion::new(Vec3::new(ow[0], ow[1], ow[2]), Vec3::new(ow[3], ow[4], ow[5]))
-        } else {
-            h.velocity_weights.copy_from_slice(&f.omega_tilde);
-            if !f.conserved {
-                f.dofs.iter().zip(&h.root_w).for_each(|(&r, &w)| h.velocity_weights[r] += w);
-            }
-            Motion::ZERO
-        };
-        let block = &mut h.s[nv * d + nv..];
-        rnea_velocity_hessian(&self.spec.model, &self.data, (&h.velocity_weights, &u0), &mut h.velocity, block, d);
     }
 
     fn save_state(&mut self) {

@@ -21,6 +21,7 @@ pub(crate) mod collision;
 mod constraints;
 pub mod goals;
 mod hessian;
+mod hessian_exact;
 mod hessian_mapping;
 mod joint_goal;
 mod layout;
