@@ -162,9 +162,16 @@ def test_ctrl_c_interrupts_a_long_solve():
         "discretization": {"control_points": 64, "nodes_per_span": 8},
         "solver": {"max_iterations": 10000000, "time_limit": 600.0},
     }
+    # Python keeps SIGINT ignored when it starts with it ignored (a job started in the background by a
+    # non-interactive shell, as CI scripts may be): install Python's own Ctrl-C handler for this test.
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
     timer = threading.Timer(0.3, lambda: os.kill(os.getpid(), signal.SIGINT))
     timer.start()
     start = time.perf_counter()
-    with pytest.raises(KeyboardInterrupt):
-        mintorque.plan(task)
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            mintorque.plan(task)
+    finally:
+        timer.cancel()
+        signal.signal(signal.SIGINT, previous)
     assert time.perf_counter() - start < 3.0, "the solve went on after Ctrl-C"
