@@ -211,7 +211,10 @@ impl Transcription<'_> {
         // (whose root moves every body) repeats whole passes; a q̇ column keeps q, so the placements of the
         // previous pass hold from the second q̇ column on.
         let free = !self.free.dofs.is_empty();
-        self.node_gradient(&mut grad, if free { Pass::Full { placed: false } } else { Pass::Base });
+        // The base of the moved passes is kept only where they follow (on a fixed base, the q columns are exact
+        // wherever the velocity block is).
+        let moved_passes = !free && !self.velocity_block_exact();
+        self.node_gradient(&mut grad, if moved_passes { Pass::Base } else { Pass::Full { placed: false } });
         self.hess.s.fill(0.0);
         let velocity_exact = self.velocity_block_exact();
         if velocity_exact {
