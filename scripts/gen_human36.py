@@ -2,7 +2,12 @@
 """Writes models/human36.urdf: a 36-DOF whole-body human tree on a fixed pelvis, the size of the
 reference library's human benchmark (used by `mintorque dynamics --bench` and benches/dynamics.rs).
 Multi-DOF anatomical joints are chains of revolutes joined by light links. Masses after de Leva (1996)
-for an 81 kg, 1.83 m adult; segments as solid cylinders."""
+for an 81 kg, 1.83 m adult; segments as solid cylinders. Ranges of motion (RANGE, degrees) after the
+built-in human's table (src/model/human/dofs.rs), in this tree's signs: x forward, z up; a rotation about y
+of a hanging segment swings it back (elbow flexion and shoulder and hip flexion are negative, knee flexion
+positive); the left side's x and z ranges are the right side's mirrored. Until 2026-12-07 every joint had
+the same +-2.5 rad, and planned motions used it: the forearm and hand spun through 140 degrees and the
+elbow bent backwards (docs/performance.md, "Why the peer tasks have so many optima")."""
 import math
 
 DOF = []
@@ -23,8 +28,28 @@ def light(name):
     <inertial><mass value="0.01"/><inertia ixx="1e-5" iyy="1e-5" izz="1e-5" ixy="0" ixz="0" iyz="0"/></inertial>
   </link>''')
 
-def joint(name, parent, child, xyz, axis, lo=-2.5, hi=2.5, effort=200):
+# Ranges of motion of the right side and the midline, degrees (see the docstring for the signs).
+RANGE = {
+    "lumbar_z": (-15, 15), "lumbar_y": (-20, 60), "lumbar_x": (-25, 25),
+    "thorax_z": (-35, 35), "thorax_y": (-15, 35), "thorax_x": (-20, 20),
+    "neck_z": (-60, 60), "neck_y": (-45, 45),
+    "shoulder_z": (-90, 90), "shoulder_y": (-180, 60), "shoulder_x": (-180, 90),
+    "elbow_y": (-150, 0), "elbow_z": (-85, 85),
+    "wrist_y": (-80, 70), "wrist_x": (-30, 30),
+    "hip_z": (-45, 45), "hip_y": (-120, 30), "hip_x": (-45, 30),
+    "knee_y": (0, 135),
+    "ankle_z": (-25, 25), "ankle_x": (-25, 25), "ankle_y": (-20, 50),
+}
+def limits(name):
+    """The range of joint `name` in radians: the table's, mirrored for the left side's x and z axes."""
+    side, _, key = name.partition("_") if name[:2] in ("l_", "r_") else ("", "", name)
+    lo, hi = RANGE[key]
+    if side == "l" and key[-1] in "xz":
+        lo, hi = -hi, -lo
+    return f"{math.radians(lo):.6f}", f"{math.radians(hi):.6f}"
+def joint(name, parent, child, xyz, axis, effort=200):
     DOF.append(name)
+    lo, hi = limits(name)
     joints.append(f'''  <joint name="{name}" type="revolute"><parent link="{parent}"/><child link="{child}"/>
     <origin xyz="{xyz[0]} {xyz[1]} {xyz[2]}" rpy="0 0 0"/><axis xyz="{axis[0]} {axis[1]} {axis[2]}"/>
     <limit lower="{lo}" upper="{hi}" effort="{effort}" velocity="10"/></joint>''')
