@@ -16,7 +16,7 @@ use mintorque::dynamics::{
     rnea_derivatives::rnea_derivatives,
     rnea_gradient::rnea_gradient,
     rnea_gradient_moved::{restore, rnea_gradient_moved, Moved, Subtrees},
-    rnea_position_hessian::rnea_position_hessian,
+    rnea_position_hessian::{rnea_hessian, rnea_position_hessian},
     rnea_velocity_hessian::{rnea_velocity_hessian, VelocityHessianWork},
     Data,
 };
@@ -247,6 +247,53 @@ proptest! {
                 let (exact, mirror) = (out[r * d + m], out[m * d + r]);
                 prop_assert!((exact - fd[(r, m)]).abs() <= 1e-6 * scale, "row {r}, column q{m}: {exact} against {} (scale {scale:e})", fd[(r, m)]);
                 prop_assert!(exact == mirror, "row {r}, column {m} not mirrored");
+            }
+        }
+    }
+
+    /// The whole `∇²φ` over `(q, q̇, q̈)` with the sums formed once against central differences of the
+    /// contracted gradient along every `q`, `q̇` and `q̈` (so the blocks it sets to zero must be zero), every
+    /// entry written; and bit for bit the blocks of the two separate entry points.
+    #[test]
+    fn whole_hessian_matches_differences_and_the_separate_blocks(seed in any::<u64>(), n in 1usize..=30) {
+        let model = random_tree(seed, n);
+        let mut data = Data::new(&model);
+        let (q, v, a) = state(seed, n);
+        let (omega, u0) = random_weights(seed ^ 0x55, n);
+        let z: Vec<f64> = [q.clone(), v.clone(), a.clone()].concat();
+        let gradient = |data: &mut Data, z: &[f64]| {
+            let (mut g_q, mut g_v, mut g_a) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+            let (q, v, a) = (&z[..n], &z[n..2 * n], &z[2 * n..]);
+            rnea_gradient(&model, data, (q, v, a), &G, None, &omega, &u0, (&mut g_q, &mut g_v, &mut g_a));
+            [g_q, g_v, g_a].concat()
+        };
+        let (d, h) = (3 * n, 1e-6);
+        let mut fd = DMatrix::zeros(d, d);
+        for m in 0..d {
+            let (mut plus, mut minus) = (z.clone(), z.clone());
+            plus[m] += h;
+            minus[m] -= h;
+            let column = (DVector::from_vec(gradient(&mut data, &plus)) - DVector::from_vec(gradient(&mut data, &minus))) / (2.0 * h);
+            fd.set_column(m, &column);
+        }
+        gradient(&mut data, &z);
+        let mut work = VelocityHessianWork::new(&model);
+        let mut whole = vec![f64::NAN; d * d];
+        rnea_hessian(&model, &data, (&omega, &u0), &mut work, &mut whole, d);
+        let scale = fd.amax().max(1.0);
+        for r in 0..d {
+            for c in 0..d {
+                let exact = whole[r * d + c];
+                prop_assert!((exact - fd[(r, c)]).abs() <= 1e-6 * scale, "entry ({r}, {c}): {exact} against {} (scale {scale:e})", fd[(r, c)]);
+            }
+        }
+        let (mut columns, mut velocity) = (vec![f64::NAN; d * d], vec![f64::NAN; n * n]);
+        rnea_position_hessian(&model, &data, (&omega, &u0), &mut work, &mut columns, d);
+        rnea_velocity_hessian(&model, &data, (&omega, &u0), &mut work, &mut velocity, n);
+        for r in 0..d {
+            for c in 0..d {
+                let separate = if r < n || c < n { columns[r * d + c] } else if r < 2 * n && c < 2 * n { velocity[(r - n) * n + c - n] } else { 0.0 };
+                prop_assert!(whole[r * d + c] == separate, "entry ({r}, {c}) differs from the separate blocks");
             }
         }
     }

@@ -35,7 +35,7 @@
 //! differencing `∇φ` along each `q_m` where the node has a fixed base and no strength terms; the loads and
 //! contact forces, which do not turn with the bodies, add their own terms ([`super::point_force::point_force_hessian`]).
 
-use super::rnea_velocity_hessian::{weighted_sums, VelocityHessianWork};
+use super::rnea_velocity_hessian::{velocity_block, weighted_sums, VelocityHessianWork};
 use super::Data;
 use crate::model::Model;
 use crate::spatial::{Force, Motion};
@@ -53,9 +53,42 @@ pub fn rnea_position_hessian(
     out: &mut [f64],
     stride: usize,
 ) {
+    check_blocks(model, out, stride);
+    weighted_sums(model, data, weights, work, true);
+    position_blocks(model, data, work, out, stride);
+}
+
+/// The whole `∇²φ` over `z = (q, q̇, q̈)` (`3nv × 3nv`, row-major, row length `stride`; every entry written)
+/// with the sums formed once: the `q` columns and rows of [`rnea_position_hessian`], the `q̇`–`q̇` block of
+/// [`super::rnea_velocity_hessian`], and zero `q̈`–`q̇`, `q̈`–`q̈` blocks (`τ` is linear in `q̈` and
+/// `∂τ/∂q̈ = H(q)` does not depend on `q̇`). Reads `data` as [`rnea_position_hessian`] does.
+pub fn rnea_hessian(
+    model: &Model,
+    data: &Data,
+    weights: (&[f64], &Motion),
+    work: &mut VelocityHessianWork,
+    out: &mut [f64],
+    stride: usize,
+) {
+    let nv = model.nv();
+    check_blocks(model, out, stride);
+    weighted_sums(model, data, weights, work, true);
+    position_blocks(model, data, work, out, stride);
+    velocity_block(model, data, work, &mut out[nv * stride + nv..], stride);
+    for r in nv..3 * nv {
+        let first = if r < 2 * nv { 2 * nv } else { nv };
+        out[r * stride + first..r * stride + 3 * nv].fill(0.0);
+    }
+}
+
+fn check_blocks(model: &Model, out: &[f64], stride: usize) {
     let nv = model.nv();
     assert!(stride >= 3 * nv && out.len() >= (3 * nv - 1) * stride + 3 * nv, "out holds the 3nv × 3nv blocks");
-    weighted_sums(model, data, weights, work, true);
+}
+
+/// The blocks of [`rnea_position_hessian`] from the sums in `work` ([`weighted_sums`] with `Q`).
+fn position_blocks(model: &Model, data: &Data, work: &VelocityHessianWork, out: &mut [f64], stride: usize) {
+    let nv = model.nv();
     for r in 0..3 * nv {
         out[r * stride..r * stride + nv].fill(0.0);
         if r < nv {

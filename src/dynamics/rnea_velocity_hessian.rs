@@ -103,6 +103,12 @@ pub fn rnea_velocity_hessian(
     let nv = model.nv();
     assert!(stride >= nv && out.len() >= (nv - 1) * stride + nv, "out holds an nv × nv block with this stride");
     weighted_sums(model, data, weights, work, false);
+    velocity_block(model, data, work, out, stride);
+}
+
+/// The block of [`rnea_velocity_hessian`] from the sums in `work` ([`weighted_sums`] at these placements).
+pub(super) fn velocity_block(model: &Model, data: &Data, work: &VelocityHessianWork, out: &mut [f64], stride: usize) {
+    let nv = model.nv();
     for m in 0..nv {
         out[m * stride..m * stride + nv].fill(0.0);
     }
@@ -114,6 +120,7 @@ pub fn rnea_velocity_hessian(
         let mut m = n;
         while m > 0 {
             let s_m = data.S[m];
+            // S_m · (K_n + K_nᵀ) S_n  +  [m ≺ n] P_n · (S_m × S_n)
             let mut h = s_m.dot(&w_n);
             if m != n {
                 h += s_m.cross(&s_n).dot(&work.p[n]);

@@ -12,24 +12,25 @@
 //!
 //! `Bₖ` the chain rule of eq. 33 (the four basis functions and their derivatives; `hessian_mapping.rs`). `∇φₖ`
 //! is exact and costs one O(nv) contracted pass of the engine (`node_gradient.rs`, `dynamics::rnea_gradient`).
-//! Where the node has no strength terms and a fixed base, `∇²φₖ`'s `q` columns and `q̇`–`q̇` block are exact
-//! from two O(nv·depth) passes (`dynamics::rnea_position_hessian`, `dynamics::rnea_velocity_hessian`) and the
-//! loads' and contact forces' own terms (`dynamics::point_force::point_force_hessian`), and nothing is
-//! differenced. Elsewhere `∇²φₖ` is the gradient's
-//! forward difference along each `qᵢ` — `nv` such passes at one node, each recomputing only the moved
-//! joint's subtree (`dynamics::rnea_gradient_moved`; whole passes for a free root, whose three translations
-//! have zero columns) —, the `q̇`–`q̇` block exact
-//! in one O(nv·depth) pass (`dynamics::rnea_velocity_hessian`: without strength terms nothing else in `φ` is
-//! of second order in `q̇` — for a free body `φ`'s `q̇` part is `ω̃ᵀτ` at weights of `q` alone; with strength
-//! terms, differences along each `q̇ᵢ` too), completed by
-//! structure: `τ` is linear in `q̈` and in `λ`, and `∂τ/∂q̈ = H(q)` does not depend on `q̇`, so
+//!
+//! **Exact nodes** — a fixed base and no strength terms (`hessian_exact.rs`): `∇²φₖ` over `(q, q̇, q̈)` comes
+//! whole from one O(nv·depth) pass (`dynamics::rnea_position_hessian::rnea_hessian`), the loads and contact
+//! forces add their own terms (`dynamics::point_force`), and nothing is differenced.
+//!
+//! **Differenced nodes** — a free root, or strength terms, whose weights vary with `q` and `q̇`: `∇²φₖ`'s `q`
+//! columns are the gradient's forward differences, one moved pass per `qᵢ` (`dynamics::rnea_gradient_moved`
+//! recomputes only the moved joint's subtree; a free root repeats whole passes and skips its translations,
+//! whose columns are zero). The `q̇`–`q̇` block is exact where there are no strength terms (a free body's `q̇`
+//! part is `ω̃ᵀτ` at weights of `q` alone: `dynamics::rnea_velocity_hessian`), else differenced too. The rest
+//! follows by structure: `τ` is linear in `q̈` and in `λ`, and `∂τ/∂q̈ = H(q)` does not depend on `q̇`, so
 //! `∂²φ/∂q̈² = ∂²φ/∂q̈∂q̇ = ∂²φ/∂λ² = ∂²φ/∂λ∂q̇ = 0` and the remaining blocks follow by symmetry from the `q`
-//! (and `q̇`) columns. The loop closures
-//! `Φ = Eᵀ(p(q) − target)` at the contact nodes add `Σ w_h ∇²Φ`, the difference of the point Jacobians
-//! along each `qᵢ`; the distances between solids `margin − d(q)` at the quadrature nodes add `Σ w_g ∇²(−d)`,
-//! the difference of their exact witness-point gradients along each `qᵢ` (`collision.rs`), and the
-//! task-space goals' rows (`goals.rs`) the same way at their times. Position limits and contact-force signs
-//! are linear and add nothing.
+//! (and `q̇`) columns.
+//!
+//! **Other rows.** The loop closures `Φ = Eᵀ(p(q) − target)` at the contact nodes add `Σ w_h ∇²Φ`, the
+//! difference of the point Jacobians along each `qᵢ`; the distances between solids `margin − d(q)` at the
+//! quadrature nodes add `Σ w_g ∇²(−d)`, the difference of their exact witness-point gradients along each `qᵢ`
+//! (`collision.rs`), and the task-space goals' rows (`goals.rs`) the same way at their times. Position
+//! limits and contact-force signs are linear and add nothing.
 
 use super::constraints::balance_coefficients;
 use super::hessian_mapping::Group;
@@ -217,13 +218,11 @@ impl Transcription<'_> {
         self.node_gradient(&mut grad, if moved_passes { Pass::Base } else { Pass::Full { placed: false } });
         self.hess.s.fill(0.0);
         let velocity_exact = self.velocity_block_exact();
-        if velocity_exact {
-            self.add_velocity_block();
-        }
         let columns = if self.position_blocks_exact() {
-            self.add_position_blocks();
+            self.add_exact_blocks();
             0
         } else if velocity_exact {
+            self.add_velocity_block();
             nv
         } else {
             2 * nv

@@ -1,12 +1,12 @@
-//! The node Hessian's blocks that need no differences (`hessian.rs`): the engine's exact `q̇`–`q̇` block
-//! (`dynamics::rnea_velocity_hessian`), its `q` columns (`dynamics::rnea_position_hessian`) and the loads' and
-//! contact forces' terms (`dynamics::point_force`), where they apply; and a free figure's translations, whose
-//! columns are zero.
+//! The node Hessian's blocks that need no differences (`hessian.rs`): on a fixed base the engine's whole
+//! `∇²φ` (`dynamics::rnea_position_hessian::rnea_hessian`) and the loads' and contact forces' terms
+//! (`dynamics::point_force`); on a free figure its `q̇`–`q̇` block (`dynamics::rnea_velocity_hessian`), and
+//! its translations' columns, which are zero.
 
 use super::Transcription;
 use crate::dynamics::kinematics;
 use crate::dynamics::point_force::{point_force_hessian, point_force_mixed};
-use crate::dynamics::rnea_position_hessian::rnea_position_hessian;
+use crate::dynamics::rnea_position_hessian::rnea_hessian;
 use crate::dynamics::rnea_velocity_hessian::rnea_velocity_hessian;
 use crate::spatial::{Motion, Vec3};
 
@@ -39,21 +39,21 @@ impl Transcription<'_> {
         self.hess.exact_blocks && contracted && self.spec.strength.is_none() && self.hess.rho.iter().all(|r| *r == 0.0)
     }
 
-    /// Whether the `q` columns are the engine's exact blocks ([`rnea_position_hessian`], and
+    /// Whether the `q` columns are the engine's exact blocks ([`rnea_hessian`], and
     /// [`point_force_hessian`] for the loads and contact forces) too: a fixed-base tree and the velocity block
     /// exact.
     pub(super) fn position_blocks_exact(&self) -> bool {
         self.free.dofs.is_empty() && self.velocity_block_exact()
     }
 
-    /// The `q`, `q̇`, `q̈` rows of the `q` columns of `hess.s` (and their transposes) from
-    /// [`rnea_position_hessian`] at the node's base pass (in `data`), with its weights `ω̂`, `u₀ = ω_W`.
-    pub(super) fn add_position_blocks(&mut self) {
+    /// The node's whole `∇²φ` over `(q, q̇, q̈)` in `hess.s` from [`rnea_hessian`] at the node's base pass (in
+    /// `data`), with its weights `ω̂`, `u₀ = ω_W`, and the loads' and contact forces' terms.
+    pub(super) fn add_exact_blocks(&mut self) {
         let d = 3 * self.layout.nv + self.layout.n_lambda;
         let h = &mut self.hess;
         let ow = &h.omega_w;
         let u0 = Motion::new(Vec3::new(ow[0], ow[1], ow[2]), Vec3::new(ow[3], ow[4], ow[5]));
-        rnea_position_hessian(&self.spec.model, &self.data, (&h.omega_hat, &u0), &mut h.velocity, &mut h.s, d);
+        rnea_hessian(&self.spec.model, &self.data, (&h.omega_hat, &u0), &mut h.velocity, &mut h.s, d);
         self.add_point_force_blocks(&u0);
     }
 
@@ -89,25 +89,18 @@ impl Transcription<'_> {
         }
     }
 
-    /// The `q̇`–`q̇` block of `hess.s` from [`rnea_velocity_hessian`] at the placements of the node's base pass
-    /// (in `data`), with that pass's weights: `ω̂` and `u₀ = ω_W`, or a free body's first-pass weights `ω̃`
-    /// (plus the root rows' where they are its forces: `root_gradient.rs`), `u₀ = 0`.
+    /// The `q̇`–`q̇` block of a free figure's `hess.s` from [`rnea_velocity_hessian`] at the placements of the
+    /// node's first pass (in `data`), with its weights `ω̃` (plus the root rows' where they are its forces:
+    /// `root_gradient.rs`), `u₀ = 0` (a fixed base takes [`Self::add_exact_blocks`]).
     pub(super) fn add_velocity_block(&mut self) {
         let nv = self.layout.nv;
         let d = 3 * nv + self.layout.n_lambda;
         let (f, h) = (&self.free, &mut self.hess);
-        let u0 = if f.dofs.is_empty() {
-            h.velocity_weights.copy_from_slice(&h.omega_hat);
-            let ow = &h.omega_w;
-            Motion::new(Vec3::new(ow[0], ow[1], ow[2]), Vec3::new(ow[3], ow[4], ow[5]))
-        } else {
-            h.velocity_weights.copy_from_slice(&f.omega_tilde);
-            if !f.conserved {
-                f.dofs.iter().zip(&h.root_w).for_each(|(&r, &w)| h.velocity_weights[r] += w);
-            }
-            Motion::ZERO
-        };
+        h.velocity_weights.copy_from_slice(&f.omega_tilde);
+        if !f.conserved {
+            f.dofs.iter().zip(&h.root_w).for_each(|(&r, &w)| h.velocity_weights[r] += w);
+        }
         let block = &mut h.s[nv * d + nv..];
-        rnea_velocity_hessian(&self.spec.model, &self.data, (&h.velocity_weights, &u0), &mut h.velocity, block, d);
+        rnea_velocity_hessian(&self.spec.model, &self.data, (&h.velocity_weights, &Motion::ZERO), &mut h.velocity, block, d);
     }
 }
