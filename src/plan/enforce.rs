@@ -13,7 +13,7 @@ use super::between::{self, CheckNodes, NodeViolation};
 use super::run::{remaining, run_start, Run};
 use super::{SolverKind, Spec, Transcription};
 use crate::error::Result;
-use crate::solve::{Multipliers, Outcome, Problem, Progress, Settings, StopReason};
+use crate::solve::{Multipliers, Outcome, Progress, Settings, StopReason};
 use std::time::Instant;
 
 /// A warm re-solve whose scaled violation grows past this multiple of its start's has diverged
@@ -127,17 +127,13 @@ fn not_converged(outcome: &mut Outcome, violations: &[NodeViolation], why: &str)
     outcome.reason = StopReason::BetweenNodes(format!("{} ({why})", listed.join("; ")));
 }
 
-/// The multipliers of `spec`'s transcription extended by zeros for the rows of the check nodes `more`.
-/// Check nodes come after the others ([`Transcription::new`]), so the old rows keep their indices.
+/// The multipliers of `spec`'s transcription carried to its rows with the check nodes `more` added
+/// ([`Transcription::carried_multipliers`]).
 fn padded(multipliers: &Multipliers, spec: &Spec, more: &CheckNodes) -> Result<Multipliers> {
     let mut grown = spec.clone();
     grown.check_nodes.limits.extend(&more.limits);
     grown.check_nodes.closures.extend(&more.closures);
-    let dims = Transcription::new(&grown)?.dims();
-    let mut m = multipliers.clone();
-    m.lambda.resize(dims.n_ineq, 0.0);
-    m.mu.resize(dims.n_eq, 0.0);
-    Ok(m)
+    Ok(Transcription::new(&grown)?.carried_multipliers(&Transcription::new(spec)?, multipliers))
 }
 
 /// Two solves in a row as one: the second's result, both's counts.

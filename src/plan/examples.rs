@@ -46,3 +46,10 @@ pub const ALL: &[Example] = &[
     Example { name: "weight_lift_mars", text: include_str!("../../examples/weight_lift_mars.toml") },
     Example { name: "weight_lift_space", text: include_str!("../../examples/weight_lift_space.toml") },
 ];
+
+/// The bundled example `name` loaded from `examples/` as `mintorque plan` loads it (for unit tests).
+#[cfg(test)]
+pub(crate) fn load(name: &str) -> crate::plan::task::Task {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("examples/{name}.toml"));
+    crate::plan::task::Task::load(&path).unwrap_or_else(|e| panic!("{e}"))
+}

@@ -260,14 +260,13 @@ pub(super) fn best(runs: &[Run]) -> usize {
 mod tests {
     use super::*;
     use crate::plan::run::run_start;
-    use crate::plan::{initial_x, task::Task, Transcription};
+    use crate::plan::{initial_x, Transcription};
 
     /// `best` keeps the lowest index among converged efforts within [`TIE`] of the least, a lower effort
     /// beyond it, and a converged run before one that is not (runs of the pendulum with their efforts set).
     #[test]
     fn best_keeps_the_first_of_tied_efforts_and_a_lower_one_beyond_the_tie() {
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/pendulum.toml");
-        let task = Task::load(&path).unwrap();
+        let task = crate::plan::examples::load("pendulum");
         let mut problem = Transcription::new(&task.spec).unwrap();
         let x0 = initial_x(&task.spec, &mut problem).unwrap();
         let run = run_start(&task.spec, task.solver, &task.settings, None, &x0, &mut |_| {}).unwrap();

@@ -96,14 +96,12 @@ fn deepest_penetration(problem: &mut Transcription, x: &[f64]) -> Result<f64> {
 mod tests {
     use super::*;
     use crate::plan::guess::initial_x;
-    use crate::plan::task::Task;
 
     /// The weight lift's bar passes close to the thighs: of its first eight bends at full size, some drive
     /// the palms into them deeper than the guess does; the starts made of them never do.
     #[test]
     fn a_start_does_not_push_solids_into_each_other_deeper_than_the_guess() {
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/weight_lift_earth.toml");
-        let task = Task::load(&path).unwrap();
+        let task = crate::plan::examples::load("weight_lift_earth");
         let mut problem = Transcription::new(&task.spec).unwrap();
         let x0 = initial_x(&task.spec, &mut problem).unwrap();
         let guess_depth = deepest_penetration(&mut problem, &x0).unwrap();

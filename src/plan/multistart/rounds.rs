@@ -260,15 +260,14 @@ where
 mod tests {
     use super::*;
     use crate::plan::run::{finish_start, first_phase};
-    use crate::plan::{initial_x, task::Task, MultiStart, Transcription};
+    use crate::plan::{initial_x, MultiStart, Transcription};
 
     /// A start that panics ends the rounds: the panic reaches the caller's thread, and no thread waits
     /// forever for the start that never finishes (the double pendulum's automatic starts, the second one
     /// panicking while the first runs on this thread).
     #[test]
     fn a_panicking_start_is_raised_on_the_callers_thread() {
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/double_pendulum.toml");
-        let task = Task::load(&path).unwrap();
+        let task = crate::plan::examples::load("double_pendulum");
         let (spec, settings, solver) = (&task.spec, &task.settings, task.solver);
         let mut problem = Transcription::new(spec).unwrap();
         let x0 = initial_x(spec, &mut problem).unwrap();

@@ -35,6 +35,7 @@ mod root_gradient;
 mod strength;
 mod terms;
 mod values;
+mod warm;
 
 use super::spec::{Objective, Spec};
 use crate::dynamics::point_force::{add_generalized_force, generalized_force_derivative, path_dofs, point_jacobian};
