@@ -1,6 +1,6 @@
 //! Criterion bench of the planner's exact second-order term `Σ wⱼ∇²cⱼ` (one evaluation over every node, as
 //! the interior point refreshes it): the node Hessians from the engine's exact blocks
-//! (`dynamics::rnea_velocity_hessian`, `dynamics::rnea_position_hessian`) against the same term with every
+//! (`dynamics::rnea_velocity_hessian`, `dynamics::rnea_hessian`) against the same term with every
 //! `q` and `q̇` column differenced (`Transcription::set_exact_node_blocks(false)`), in one run, on the peer
 //! suite's human figures and three bundled examples with point forces (a payload, the hands on the floor, the
 //! 3D stoop's box) at their initial guess with unit weights on every row.

@@ -218,7 +218,7 @@ fn second_order_term_matches_differences_of_the_gradient() {
 }
 
 /// The same without contacts and loads — a figure free of point forces, standing on its balance rows: the
-/// node Hessian's `q` columns come from the engine's exact blocks (`dynamics::rnea_position_hessian`) instead
+/// node Hessian's `q` columns come from the engine's exact blocks (`dynamics::rnea_hessian`) instead
 /// of differences, and must match the differences of the gradient as well.
 #[test]
 fn second_order_term_without_point_forces_matches_differences_of_the_gradient() {
@@ -347,7 +347,7 @@ fn free_root_posture_goal_holds_the_joints_not_the_root() {
 
 /// On the human figures of the peer suite and bundled examples — free-floating, with a payload, with the hands
 /// on the floor (contact forces) —, the node Hessians from the engine's exact blocks (`rnea_velocity_hessian`,
-/// `rnea_position_hessian`, `point_force_hessian`) against the same term with every
+/// `rnea_hessian`, `point_force_hessian`) against the same term with every
 /// `q` and `q̇` column differenced: the same matrix to the differences' error, at a random point with random
 /// weights on every row.
 #[test]

@@ -20,7 +20,7 @@ pub mod rnea;
 pub mod rnea_derivatives;
 pub mod rnea_gradient;
 pub mod rnea_gradient_moved;
-pub mod rnea_position_hessian;
+pub mod rnea_hessian;
 pub mod rnea_velocity_hessian;
 
 pub use data::Data;

@@ -29,7 +29,7 @@ use super::Data;
 use crate::model::Model;
 use crate::spatial::{motion_cross_matrix, Force, Mat6, Motion};
 
-/// Scratch of [`rnea_velocity_hessian`] and [`super::rnea_position_hessian`], allocated once per model: each
+/// Scratch of [`rnea_velocity_hessian`] and [`super::rnea_hessian`], allocated once per model: each
 /// body's `Ψ_b` and the subtree sums `P`, `K` (and `Q` of the position blocks).
 #[derive(Clone, Debug)]
 pub struct VelocityHessianWork {

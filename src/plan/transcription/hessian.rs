@@ -14,7 +14,7 @@
 //! is exact and costs one O(nv) contracted pass of the engine (`node_gradient.rs`, `dynamics::rnea_gradient`).
 //!
 //! **Exact nodes** — a fixed base and no strength terms (`hessian_exact.rs`): `∇²φₖ` over `(q, q̇, q̈)` comes
-//! whole from one O(nv·depth) pass (`dynamics::rnea_position_hessian::rnea_hessian`), the loads and contact
+//! whole from one O(nv·depth) pass (`dynamics::rnea_hessian`), the loads and contact
 //! forces add their own terms (`dynamics::point_force`), and nothing is differenced.
 //!
 //! **Differenced nodes** — a free root, or strength terms, whose weights vary with `q` and `q̇`: `∇²φₖ`'s `q`

@@ -1,18 +1,18 @@
 //! The node Hessian's blocks that need no differences (`hessian.rs`): on a fixed base the engine's whole
-//! `∇²φ` (`dynamics::rnea_position_hessian::rnea_hessian`) and the loads' and contact forces' terms
+//! `∇²φ` (`dynamics::rnea_hessian`) and the loads' and contact forces' terms
 //! (`dynamics::point_force`); on a free figure its `q̇`–`q̇` block (`dynamics::rnea_velocity_hessian`), and
 //! its translations' columns, which are zero.
 
 use super::Transcription;
 use crate::dynamics::kinematics;
 use crate::dynamics::point_force::{point_force_hessian, point_force_mixed};
-use crate::dynamics::rnea_position_hessian::rnea_hessian;
+use crate::dynamics::rnea_hessian::rnea_hessian;
 use crate::dynamics::rnea_velocity_hessian::rnea_velocity_hessian;
 use crate::spatial::{Motion, Vec3};
 
 impl Transcription<'_> {
     /// Whether each node's Hessian takes the engine's exact blocks where they apply
-    /// (`dynamics::rnea_velocity_hessian`, `dynamics::rnea_position_hessian`; the default) or differences the
+    /// (`dynamics::rnea_velocity_hessian`, `dynamics::rnea_hessian`; the default) or differences the
     /// exact gradient along every `qⱼ` and `q̇ⱼ` (the reference the tests and `benches/second_order.rs`
     /// compare them with).
     pub fn set_exact_node_blocks(&mut self, on: bool) {

@@ -1,4 +1,4 @@
-//! The `q` columns of the Hessian of one weighted sum of the joint torques and the root wrench,
+//! The Hessian, by its `q` columns, of one weighted sum of the joint torques and the root wrench,
 //! `∂²φ/∂q∂q`, `∂²φ/∂q̇∂q` and `∂²φ/∂q̈∂q` of
 //!
 //! ```text
@@ -40,28 +40,12 @@ use super::Data;
 use crate::model::Model;
 use crate::spatial::{Force, Motion};
 
-/// The `q`-column blocks (module docs) at the state of the last [`super::rnea_gradient::rnea_gradient`]
+/// The whole `∇²φ` over `z = (q, q̇, q̈)` at the state of the last [`super::rnea_gradient::rnea_gradient`]
 /// pass in `data` (its placements, velocities, `A`, `Ṡ`, `U` and composites `F`, `Y`, `B_ww`, `p` are read;
-/// no external forces) with the same `weights`, into the `3nv × 3nv` row-major `out` of row length
-/// `stride`: rows `0…nv` (`q`), `nv…2nv` (`q̇`), `2nv…3nv` (`q̈`) of the columns `0…nv` (`q`), and their
-/// transposes in the columns `nv…3nv` of the rows `0…nv` (every entry of these blocks written).
-pub fn rnea_position_hessian(
-    model: &Model,
-    data: &Data,
-    weights: (&[f64], &Motion),
-    work: &mut VelocityHessianWork,
-    out: &mut [f64],
-    stride: usize,
-) {
-    check_blocks(model, out, stride);
-    weighted_sums(model, data, weights, work, true);
-    position_blocks(model, data, work, out, stride);
-}
-
-/// The whole `∇²φ` over `z = (q, q̇, q̈)` (`3nv × 3nv`, row-major, row length `stride`; every entry written)
-/// with the sums formed once: the `q` columns and rows of [`rnea_position_hessian`], the `q̇`–`q̇` block of
-/// [`super::rnea_velocity_hessian`], and zero `q̈`–`q̇`, `q̈`–`q̈` blocks (`τ` is linear in `q̈` and
-/// `∂τ/∂q̈ = H(q)` does not depend on `q̇`). Reads `data` as [`rnea_position_hessian`] does.
+/// no external forces) with the same `weights`, into the `3nv × 3nv` row-major `out` of row length `stride`
+/// (every entry written), the sums formed once: the `q` columns and rows (module docs), the `q̇`–`q̇` block
+/// of [`super::rnea_velocity_hessian`], and zero `q̈`–`q̇`, `q̈`–`q̈` blocks (`τ` is linear in `q̈` and
+/// `∂τ/∂q̈ = H(q)` does not depend on `q̇`).
 pub fn rnea_hessian(
     model: &Model,
     data: &Data,
@@ -71,7 +55,7 @@ pub fn rnea_hessian(
     stride: usize,
 ) {
     let nv = model.nv();
-    check_blocks(model, out, stride);
+    assert!(stride >= 3 * nv && out.len() >= (3 * nv - 1) * stride + 3 * nv, "out holds the 3nv × 3nv blocks");
     weighted_sums(model, data, weights, work, true);
     position_blocks(model, data, work, out, stride);
     velocity_block(model, data, work, &mut out[nv * stride + nv..], stride);
@@ -81,12 +65,7 @@ pub fn rnea_hessian(
     }
 }
 
-fn check_blocks(model: &Model, out: &[f64], stride: usize) {
-    let nv = model.nv();
-    assert!(stride >= 3 * nv && out.len() >= (3 * nv - 1) * stride + 3 * nv, "out holds the 3nv × 3nv blocks");
-}
-
-/// The blocks of [`rnea_position_hessian`] from the sums in `work` ([`weighted_sums`] with `Q`).
+/// The `q` columns and rows of [`rnea_hessian`] from the sums in `work` ([`weighted_sums`] with `Q`).
 fn position_blocks(model: &Model, data: &Data, work: &VelocityHessianWork, out: &mut [f64], stride: usize) {
     let nv = model.nv();
     for r in 0..3 * nv {
