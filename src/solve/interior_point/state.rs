@@ -281,6 +281,7 @@ impl<'a> Ipm<'a> {
     /// `μ ← max(μ_min, min(κμ, μ^θ))` (in units of the objective's scale) while the barrier subproblem is
     /// solved to `κ_ε μ`: its stationarity, `θ` and `max |sᵢvᵢ − μ|`, all relative to `f_scale`.
     pub(super) fn update_barrier(&mut self, settings: &Settings) {
+        self.rescale_first_barrier();
         // Complementarity μ must end below the test's tolerance on the objective as it is now.
         let floor =
             0.1 * settings.tol_stationarity.min(settings.tol_violation) * (1.0 + self.eval.objective().abs()) / self.f_scale;
@@ -295,6 +296,25 @@ impl<'a> Ipm<'a> {
                 return;
             }
             self.mu = floor.max((BARRIER_SHRINK * mu).min(mu.powf(BARRIER_POWER))) * self.f_scale;
+            self.barrier_updates += 1;
+            self.filter.reset();
+            self.safeguard_multipliers();
+        }
+    }
+
+    /// When the exact term joins a cold start's Gauss–Newton steps ([`super::step::GAUSS_NEWTON_FIRST`]) and
+    /// `μ` is still the first barrier value: `μ ← min(μ, FIRST_BARRIER·max(1, |F(x)|)/m)`, the barrier's sum a
+    /// tenth of the objective as it is now rather than at the guess (the dip's guess 4.8·10⁴ against 944 after
+    /// the Gauss–Newton steps and 713 at the optimum): a barrier sized by the guess holds the motion far from
+    /// its limits, and the next, much smaller value then crawls back along them, its steps cut by the
+    /// fraction-to-boundary rule (docs/performance.md, "The first barrier value from the objective").
+    fn rescale_first_barrier(&mut self) {
+        if self.barrier_updates > 0 || self.gauss_newton_first == 0 || self.iterations != self.gauss_newton_first {
+            return;
+        }
+        let mu = FIRST_BARRIER * self.eval.objective().abs().max(1.0) / (self.dims.n_ineq.max(1) as f64);
+        if mu < self.mu {
+            self.mu = mu;
             self.barrier_updates += 1;
             self.filter.reset();
             self.safeguard_multipliers();
