@@ -6,7 +6,7 @@
 
 mod common;
 
-use common::{random_tree, Rng};
+use common::{central_differences, random_tree, Rng};
 use mintorque::dynamics::{
     aba::aba,
     crba::crba,
@@ -197,15 +197,7 @@ proptest! {
             rnea_gradient(&model, data, (&q, v, &a), &G, Some(&fext), &omega, &u0, (&mut g_q, &mut g_v, &mut g_a));
             g_v
         };
-        let h = 1e-3;
-        let mut fd = DMatrix::zeros(n, n);
-        for k in 0..n {
-            let (mut plus, mut minus) = (v.clone(), v.clone());
-            plus[k] += h;
-            minus[k] -= h;
-            let column = (DVector::from_vec(g_v(&mut data, &plus)) - DVector::from_vec(g_v(&mut data, &minus))) / (2.0 * h);
-            fd.set_column(k, &column);
-        }
+        let fd = central_differences(&v, 1e-3, &mut |v| g_v(&mut data, v));
         let mut exact = vec![f64::NAN; n * n];
         kinematics::placements(&model, &mut data, &q);
         rnea_velocity_hessian(&model, &data, (&omega, &u0), &mut VelocityHessianWork::new(&model), &mut exact, n);
@@ -230,15 +222,8 @@ proptest! {
             rnea_gradient(&model, data, (q, v, a), &G, None, &omega, &u0, (&mut g_q, &mut g_v, &mut g_a));
             [g_q, g_v, g_a].concat()
         };
-        let (d, h) = (3 * n, 1e-6);
-        let mut fd = DMatrix::zeros(d, d);
-        for m in 0..d {
-            let (mut plus, mut minus) = (z.clone(), z.clone());
-            plus[m] += h;
-            minus[m] -= h;
-            let column = (DVector::from_vec(gradient(&mut data, &plus)) - DVector::from_vec(gradient(&mut data, &minus))) / (2.0 * h);
-            fd.set_column(m, &column);
-        }
+        let d = 3 * n;
+        let fd = central_differences(&z, 1e-6, &mut |z| gradient(&mut data, z));
         gradient(&mut data, &z);
         let mut work = VelocityHessianWork::new(&model);
         let mut whole = vec![f64::NAN; d * d];

@@ -258,16 +258,16 @@ pub(super) fn check_near(
 const NEAR_MARGIN: f64 = 10.0;
 
 /// The dense grid's rows, to find the missed groups' rows that hold but lie close to their bound.
-struct Close<'a, 's, F: Fn(f64) -> usize> {
+struct Close<'a, 's> {
     grid: &'a Transcription<'s>,
     g: &'a [f64],
     times: &'a [f64],
     n_ineq: usize,
     n_eq: usize,
-    span_of: &'a F,
+    span_of: &'a dyn Fn(f64) -> usize,
 }
 
-impl<F: Fn(f64) -> usize> Close<'_, '_, F> {
+impl Close<'_, '_> {
     /// Adds to `near` the rows of the groups in `found` that hold within [`NEAR_MARGIN`] tolerances of their
     /// bound (only those groups' rows are measured: the other rows cost nothing).
     fn add_below(&self, found: &Found, near: &mut Found, tolerances: &Tolerances) {

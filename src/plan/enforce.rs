@@ -1,10 +1,11 @@
 //! Refinement until the limits hold between the nodes ([`super::between`]): check the solved motion on the
 //! dense grid; where a row group misses its tolerance, add check nodes at the worst time of every
 //! offending knot span, and of every span where that group is over its bound by less than its tolerance or
-//! under it by less than ten tolerances ([`between::check_near`]; inequality rows at weight 0 in the objective, or loop closures) and re-solve from
-//! the previous solution, warm-started with its multipliers (the new rows' start at 0), with at most the
-//! first solve's iterations — and where that does not converge, from the initial guess `guess`, cold (the
-//! bundled examples converge so where the warm re-solve crawls, docs/task-file.md). Repeat until the
+//! under it by less than ten tolerances ([`between::check_near`]; inequality rows at weight 0 in the
+//! objective, or loop closures) and re-solve from the previous solution, warm-started with its multipliers
+//! (the new rows' start at 0), with at most the first solve's iterations — and where that does not
+//! converge, from the initial guess `guess`, cold (the bundled examples converge so where the warm re-solve
+//! crawls, docs/task-file.md). Repeat until the
 //! check holds, or the rounds ([`super::BetweenNodes::rounds`]), the iterations or the time of the whole
 //! solve are spent; then the plan is not converged, and the reason names every missed limit in its units.
 //! Where the check holds at once this costs one dense evaluation.
@@ -71,7 +72,7 @@ pub(super) fn enforce(
                 root_hint(&violations, spec.n_ctrl)
             ))
         } else {
-            let warm = padded(&run.outcome.multipliers, &spec, &more)?;
+            let warm = carried(&run.outcome.multipliers, &spec, &more)?;
             spec.check_nodes.limits.extend(&more.limits);
             spec.check_nodes.closures.extend(&more.closures);
             // Warm first, with at most the first solve's iterations; where that does not converge (the
@@ -129,7 +130,7 @@ fn not_converged(outcome: &mut Outcome, violations: &[NodeViolation], why: &str)
 
 /// The multipliers of `spec`'s transcription carried to its rows with the check nodes `more` added
 /// ([`Transcription::carried_multipliers`]).
-fn padded(multipliers: &Multipliers, spec: &Spec, more: &CheckNodes) -> Result<Multipliers> {
+fn carried(multipliers: &Multipliers, spec: &Spec, more: &CheckNodes) -> Result<Multipliers> {
     let mut grown = spec.clone();
     grown.check_nodes.limits.extend(&more.limits);
     grown.check_nodes.closures.extend(&more.closures);

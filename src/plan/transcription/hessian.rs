@@ -41,6 +41,7 @@ use crate::dynamics::rnea_velocity_hessian::VelocityHessianWork;
 use crate::dynamics::{kinematics, point_force::point_jacobian, Data};
 use crate::model::Model;
 use crate::solve::SymmetricMatrix;
+use crate::spatial::{Motion, Vec3};
 use crate::trajectory::bspline::BasisAt;
 
 /// Relative step of the forward differences: `ε = STEP·(1 + |zᵢ|)`, about √(machine ε).
@@ -83,6 +84,12 @@ pub(super) struct HessianWork {
 }
 
 impl HessianWork {
+    /// `u₀ = ω_W` as a motion `[ω; v]`: the weights of the root wrench `W = [n; f]` in `φ`.
+    pub(super) fn root_weight(&self) -> Motion {
+        let ow = &self.omega_w;
+        Motion::new(Vec3::new(ow[0], ow[1], ow[2]), Vec3::new(ow[3], ow[4], ow[5]))
+    }
+
     pub(super) fn new(model: &Model, nl: usize) -> Self {
         let nv = model.nv();
         let d = 3 * nv + nl;
@@ -214,10 +221,10 @@ impl Transcription<'_> {
         let free = !self.free.dofs.is_empty();
         // The base of the moved passes is kept only where they follow (on a fixed base, the q columns are exact
         // wherever the velocity block is).
-        let moved_passes = !free && !self.velocity_block_exact();
+        let velocity_exact = self.velocity_block_exact();
+        let moved_passes = !free && !velocity_exact;
         self.node_gradient(&mut grad, if moved_passes { Pass::Base } else { Pass::Full { placed: false } });
         self.hess.s.fill(0.0);
-        let velocity_exact = self.velocity_block_exact();
         let columns = if self.position_blocks_exact() {
             self.add_exact_blocks();
             0

@@ -50,9 +50,8 @@ impl Transcription<'_> {
     /// `data`), with its weights `ω̂`, `u₀ = ω_W`, and the loads' and contact forces' terms.
     pub(super) fn add_exact_blocks(&mut self) {
         let d = 3 * self.layout.nv + self.layout.n_lambda;
+        let u0 = self.hess.root_weight();
         let h = &mut self.hess;
-        let ow = &h.omega_w;
-        let u0 = Motion::new(Vec3::new(ow[0], ow[1], ow[2]), Vec3::new(ow[3], ow[4], ow[5]));
         rnea_hessian(&self.spec.model, &self.data, (&h.omega_hat, &u0), &mut h.velocity, &mut h.s, d);
         self.add_point_force_blocks(&u0);
     }

@@ -37,8 +37,7 @@ impl Transcription<'_> {
         if !self.free.dofs.is_empty() {
             return self.free_node_gradient(out, pass == Pass::Full { placed: true });
         }
-        let ow = &self.hess.omega_w;
-        let u0 = Motion::new(Vec3::new(ow[0], ow[1], ow[2]), Vec3::new(ow[3], ow[4], ow[5]));
+        let u0 = self.hess.root_weight();
         let omega = std::mem::take(&mut self.hess.omega_hat);
         self.contracted_gradient(out, pass, &omega, &u0);
         self.hess.omega_hat = omega;

@@ -178,7 +178,7 @@ impl<'a> Ipm<'a> {
         self.mu = match settings.warm_start {
             // Resuming near a solution: a barrier at the tolerance.
             Some(_) => settings.tol_stationarity * 0.1 * (1.0 + f.abs()),
-            None => FIRST_BARRIER * self.f_scale / (self.dims.n_ineq.max(1) as f64),
+            None => self.first_barrier(f),
         };
         // s = max(−ĝ, κ), v = μ/s.
         self.restart_slacks();
@@ -295,11 +295,21 @@ impl<'a> Ipm<'a> {
             if stationarity.max(self.theta()).max(centrality) > BARRIER_ERROR * mu {
                 return;
             }
-            self.mu = floor.max((BARRIER_SHRINK * mu).min(mu.powf(BARRIER_POWER))) * self.f_scale;
-            self.barrier_updates += 1;
-            self.filter.reset();
-            self.safeguard_multipliers();
+            self.set_barrier(floor.max((BARRIER_SHRINK * mu).min(mu.powf(BARRIER_POWER))) * self.f_scale);
         }
+    }
+
+    /// The first barrier value at the objective `f`: [`FIRST_BARRIER`] × `max(1, |f|)` per inequality.
+    fn first_barrier(&self, f: f64) -> f64 {
+        FIRST_BARRIER * f.abs().max(1.0) / (self.dims.n_ineq.max(1) as f64)
+    }
+
+    /// A new barrier value `mu`: the filter emptied and the multipliers safeguarded against it.
+    fn set_barrier(&mut self, mu: f64) {
+        self.mu = mu;
+        self.barrier_updates += 1;
+        self.filter.reset();
+        self.safeguard_multipliers();
     }
 
     /// When the exact term joins a cold start's Gauss–Newton steps ([`super::step::GAUSS_NEWTON_FIRST`]) and
@@ -312,12 +322,9 @@ impl<'a> Ipm<'a> {
         if self.barrier_updates > 0 || self.gauss_newton_first == 0 || self.iterations != self.gauss_newton_first {
             return;
         }
-        let mu = FIRST_BARRIER * self.eval.objective().abs().max(1.0) / (self.dims.n_ineq.max(1) as f64);
+        let mu = self.first_barrier(self.eval.objective());
         if mu < self.mu {
-            self.mu = mu;
-            self.barrier_updates += 1;
-            self.filter.reset();
-            self.safeguard_multipliers();
+            self.set_barrier(mu);
         }
     }
 
