@@ -35,22 +35,35 @@ pub fn plan_with_starts(
     let initial_objective = objective_at(&mut problem, &x0).map_err(|e| Error::task(&spec.origin, "initial guess", e))?;
     let guesses = multistart::guesses(spec, &mut problem, &x0, multi)?;
     let deadline = settings.time_limit.map(|t| started + Duration::from_secs_f64(t));
-    let runs = multistart::run_rounds(
+    let check_first = |run, cancel: &solve::Cancel, observer: &mut dyn FnMut(&Progress)| {
+        let settings = Settings { cancel: cancel.clone(), ..settings.clone() };
+        super::enforce::enforce(spec, solver, &settings, deadline, run, &guesses[0], observer)
+    };
+    let (runs, first_checked) = multistart::run_rounds(
         &guesses,
         multi,
         &settings.cancel,
         observer,
-        |x, cancel, observer| {
-            let settings = Settings { cancel: cancel.clone(), ..settings.clone() };
-            first_phase(spec, solver, &settings, deadline, x, observer)
-        },
-        |first, polish, observer| finish_start(first, solver, settings, deadline, polish, observer),
-        |first| first.stalled(settings),
+        (
+            |x: &[f64], cancel: &solve::Cancel, observer: &mut dyn FnMut(&Progress)| {
+                let settings = Settings { cancel: cancel.clone(), ..settings.clone() };
+                first_phase(spec, solver, &settings, deadline, x, observer)
+            },
+            |first, polish, observer: &mut dyn FnMut(&Progress)| {
+                finish_start(first, solver, settings, deadline, polish, observer)
+            },
+            |first: &Started| first.stalled(settings),
+        ),
+        check_first,
     )?;
     let best = multistart::best(&runs);
     let starts = runs.iter().enumerate().map(|(k, r)| StartReport::new(k, multi, r)).collect();
     let run = runs.into_iter().nth(best).expect("at least one start");
-    let enforced = super::enforce::enforce(spec, solver, settings, deadline, run, &guesses[best], observer)?;
+    // The first start was checked between the nodes as soon as it converged (`run_rounds`); another is now.
+    let enforced = match first_checked {
+        Some(checked) if best == 0 => checked?,
+        _ => super::enforce::enforce(spec, solver, settings, deadline, run, &guesses[best], observer)?,
+    };
     let mut run = enforced.run;
     name_in_units(&mut run.outcome, &Transcription::new(&enforced.spec)?);
     let nv = spec.model.nv();
@@ -109,6 +122,7 @@ fn stuck_in_units(outcome: &mut Outcome, problem: &Transcription) {
 }
 
 /// One start's result.
+#[derive(Clone)]
 pub(super) struct Run {
     pub outcome: Outcome,
     pub polished: bool,

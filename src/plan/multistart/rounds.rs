@@ -8,10 +8,16 @@
 //!   time (they depend on no other start); if the round ends the solve, they are stopped ([`Cancel`]) and
 //!   dropped.
 //!
+//! - the first start, once converged, is checked between the nodes (and re-solved with check nodes where it
+//!   misses a limit there) on the caller's thread at once, while the other threads go on with the other
+//!   starts: the plan keeps the first start on most tasks (28 of the 35 of docs/performance.md), and its
+//!   check then no longer waits for the slowest start of the last round — where it is not kept, the work
+//!   is lost and the kept start is checked after the rounds, as before.
+//!
 //! So the plan is the one the rounds make one after another, on any number of threads, while a fast start
 //! no longer leaves its thread idle until the slow one of its round ends.
 
-use super::HOPELESS;
+use super::{HOPELESS, TIE};
 use crate::error::{Error, Result};
 use crate::plan::run::{Run, Started};
 use crate::solve::{Cancel, Progress};
@@ -48,6 +54,8 @@ struct State<'s> {
     end: Option<Result<usize>>,
     /// One flag per start (children of the caller's): a start begun ahead of time and not needed is stopped.
     cancels: Vec<Cancel>,
+    /// The first start's check (a child of the caller's flag), stopped once another start has done better.
+    check_cancel: Cancel,
     /// A job's panic, raised again once every thread has stopped.
     panicked: Option<Box<dyn std::any::Any + Send>>,
 }
@@ -121,6 +129,17 @@ impl<'s> State<'s> {
         self.decided = b;
     }
 
+    /// Whether a finished start has converged to less effort than the first start's (beyond [`TIE`]), which
+    /// the plan then does not keep: its check between the nodes is of no use.
+    fn beaten_first(&self) -> bool {
+        let converged = |s: &Slot| match s {
+            Slot::Done(r) if r.outcome.converged && r.outcome.objective.is_finite() => Some(r.outcome.objective),
+            _ => None,
+        };
+        let Some(first) = converged(&self.slots[0]) else { return false };
+        self.slots[1..].iter().filter_map(converged).any(|f| f < first - TIE * first.abs())
+    }
+
     /// Ends the rounds and stops the starts begun ahead of time that they did not use.
     fn finish_rounds(&mut self, end: Result<usize>) {
         let used = *end.as_ref().unwrap_or(&0);
@@ -180,6 +199,9 @@ where
         match slot {
             Ok(slot) => {
                 state.slots[i] = slot;
+                if state.beaten_first() {
+                    state.check_cancel.raise();
+                }
                 state.advance(self.round);
             }
             Err(panic) => {
@@ -212,36 +234,48 @@ where
 /// Runs the starts from the guesses round by round, `multi.starts` at a time, until the rounds end
 /// ([`super::MultiStart::up_to`], [`super::agreed`]) or the guesses do — each start's first phase
 /// (`first`, stopped by its flag), then, where it stalled (`stalled`), its polish (`finish`) unless left
-/// unpolished ([`HOPELESS`]). The first start runs on this thread with `observer`; the others on this
-/// thread and as many more as rayon's pool has threads (module docs). `cancel` stops them all.
-pub(in crate::plan) fn run_rounds<'s, F, P, W>(
+/// unpolished ([`HOPELESS`]). The first start runs on this thread with `observer`, and where it converged
+/// `check` runs on it at once (module docs); the others on this thread and as many more as rayon's pool has
+/// threads. `cancel` stops them all. Returns the used starts and the first start's check, if made.
+pub(in crate::plan) fn run_rounds<'s, F, P, W, C, K>(
     guesses: &[Vec<f64>],
     multi: &super::MultiStart,
     cancel: &Cancel,
     observer: &mut dyn FnMut(&Progress),
-    first: F,
-    finish: P,
-    stalled: W,
-) -> Result<Vec<Run>>
+    (first, finish, stalled): (F, P, W),
+    check: C,
+) -> Result<(Vec<Run>, Option<K>)>
 where
     F: Fn(&[f64], &Cancel, &mut dyn FnMut(&Progress)) -> Result<Started<'s>> + Sync,
     P: Fn(Started<'s>, bool, &mut dyn FnMut(&Progress)) -> Run + Sync,
     W: Fn(&Started<'s>) -> bool + Sync,
+    C: FnOnce(Run, &Cancel, &mut dyn FnMut(&Progress)) -> K,
     Started<'s>: Send,
 {
     let n = guesses.len();
     let mut slots: Vec<Slot> = (0..n).map(|_| Slot::Waiting).collect();
     slots[0] = Slot::Running; // this thread's, with the observer
-    let state = State { slots, decided: 0, end: None, cancels: (0..n).map(|_| cancel.child()).collect(), panicked: None };
+    let cancels = (0..n).map(|_| cancel.child()).collect();
+    let state = State { slots, decided: 0, end: None, cancels, check_cancel: cancel.child(), panicked: None };
     let work =
         Work { guesses, round: multi.starts.max(1), first, finish, stalled, state: Mutex::new(state), changed: Condvar::new() };
     let helpers = rayon::current_num_threads().saturating_sub(1).min(n - 1);
+    let mut checked = None;
     std::thread::scope(|scope| {
         for _ in 0..helpers {
             scope.spawn(|| work.serve(&mut |_| {}));
         }
         let cancel = work.lock().cancels[0].clone();
         drop(work.complete(0, work.run_caught(Job::First(0), &cancel, &mut *observer)));
+        let (converged, check_cancel) = {
+            let state = work.lock();
+            let first = match &state.slots[0] {
+                Slot::Done(run) if run.outcome.converged && !state.beaten_first() => Some(run.clone()),
+                _ => None,
+            };
+            (first, state.check_cancel.clone())
+        };
+        checked = converged.map(|run| check(run, &check_cancel, &mut *observer)).filter(|_| !check_cancel.raised());
         work.serve(&mut |_| {});
     });
     let mut state = work.state.into_inner().expect("no start panics holding the rounds' state");
@@ -249,11 +283,9 @@ where
         std::panic::resume_unwind(panic);
     }
     let used = state.end.take().expect("the rounds ended")?;
-    Ok(state
-        .slots
-        .drain(..used)
-        .map(|s| if let Slot::Done(r) = s { r } else { unreachable!("a used start is finished") })
-        .collect())
+    let runs =
+        state.slots.drain(..used).map(|s| if let Slot::Done(r) = s { r } else { unreachable!("a used start is finished") });
+    Ok((runs.collect(), checked))
 }
 
 #[cfg(test)]
@@ -279,12 +311,17 @@ mod tests {
                 &multi,
                 &Cancel::default(),
                 &mut |_| {},
-                |x, _, observer| {
-                    assert!(x == &guesses[0][..], "a start that panics");
-                    first_phase(spec, solver, settings, None, x, observer)
-                },
-                |first, polish, observer| finish_start(first, solver, settings, None, polish, observer),
-                |first| first.stalled(settings),
+                (
+                    |x: &[f64], _: &Cancel, observer: &mut dyn FnMut(&Progress)| {
+                        assert!(x == &guesses[0][..], "a start that panics");
+                        first_phase(spec, solver, settings, None, x, observer)
+                    },
+                    |first, polish, observer: &mut dyn FnMut(&Progress)| {
+                        finish_start(first, solver, settings, None, polish, observer)
+                    },
+                    |first: &Started| first.stalled(settings),
+                ),
+                |_, _, _| (),
             )
         }));
         let panic = rounds.err().expect("the panic reached this thread");
