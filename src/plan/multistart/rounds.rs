@@ -6,13 +6,13 @@
 //! - a stalled start waits for its round's decision ([`HOPELESS`]), then its polish runs on any thread;
 //! - a thread with nothing of the current round left to do begins the next round's first phases ahead of
 //!   time (they depend on no other start); if the round ends the solve, they are stopped ([`Cancel`]) and
-//!   dropped.
-//!
+//!   dropped;
 //! - the first start, once converged, is checked between the nodes (and re-solved with check nodes where it
 //!   misses a limit there) on the caller's thread at once, while the other threads go on with the other
 //!   starts: the plan keeps the first start on most tasks (28 of the 35 of docs/performance.md), and its
-//!   check then no longer waits for the slowest start of the last round — where it is not kept, the work
-//!   is lost and the kept start is checked after the rounds, as before.
+//!   check then no longer waits for the slowest start of the last round. It is stopped and dropped as soon
+//!   as another start has converged to less effort (beyond [`TIE`]: the plan cannot keep the first start
+//!   then); where it is not kept, the kept start is checked after the rounds, as before.
 //!
 //! So the plan is the one the rounds make one after another, on any number of threads, while a fast start
 //! no longer leaves its thread idle until the slow one of its round ends.
@@ -206,6 +206,7 @@ where
             }
             Err(panic) => {
                 state.panicked.get_or_insert(panic);
+                state.check_cancel.raise();
                 state.finish_rounds(Ok(0));
             }
         }
