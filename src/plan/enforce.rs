@@ -134,7 +134,7 @@ fn carried(multipliers: &Multipliers, spec: &Spec, more: &CheckNodes) -> Result<
     let mut grown = spec.clone();
     grown.check_nodes.limits.extend(&more.limits);
     grown.check_nodes.closures.extend(&more.closures);
-    Ok(Transcription::new(&grown)?.carried_multipliers(&Transcription::new(spec)?, multipliers))
+    Ok(Transcription::new(&grown)?.carried_multipliers(more, multipliers))
 }
 
 /// Two solves in a row as one: the second's result, both's counts.
