@@ -78,6 +78,7 @@ fn a_limit_that_cannot_be_met_between_the_nodes_ends_not_converged_in_units() {
 fn bad_between_node_settings_name_the_field() {
     for (extra, field) in [
         ("per_span = 0", "constraints.between_nodes.per_span"),
+        ("position_samples = 33", "constraints.between_nodes.position_samples"),
         ("tolerances = { closure_mm = -1.0 }", "constraints.between_nodes.tolerances.closure_mm"),
         ("tolerances = { torque_percent = nan }", "constraints.between_nodes.tolerances.torque_percent"),
     ] {
@@ -91,4 +92,46 @@ fn bad_between_node_settings_name_the_field() {
     let text = format!("{}\n[constraints.between_nodes]\nrefnie = false\n", common::TASK);
     let e = Task::parse(&text, &path()).map(|_| ()).unwrap_err().to_string();
     assert!(e.contains("refnie"), "{e}");
+}
+
+/// The double pendulum's elbow held within ±10°, checked to a ten-thousandth of a degree: at the default
+/// N = 16 its optimum rides both limits, and bulges past them between the nodes by about 0.03°.
+fn elbow_within_ten_degrees(between_nodes: &str) -> Task {
+    let text = format!(
+        "{}{}\n[constraints]\nposition_limit = {{ elbow = [-10.0, 10.0] }}\n[constraints.between_nodes]\n\
+         tolerances = {{ angle_deg = 0.0001 }}\n{between_nodes}\n",
+        common::TASK,
+        common::FIXED_N
+    );
+    Task::parse(&text, &path()).unwrap()
+}
+
+/// The worst excess (°) of the elbow's limits on the dense grid.
+fn elbow_excess(planned: &plan::Plan) -> f64 {
+    planned.between_nodes.iter().filter(|v| v.constraint.contains("elbow")).map(|v| v.excess).fold(0.0, f64::max)
+}
+
+#[test]
+fn a_missed_position_limit_is_refined_with_its_rows_alone() {
+    let mut task = elbow_within_ten_degrees("");
+    let planned = plan_of(&mut task);
+    assert!(planned.converged(), "{}", planned.outcome.reason);
+    assert!(planned.between_rounds >= 1);
+    // Position checks only: no whole check node (torque rows, the dynamics) for a position limit.
+    let added = &planned.check_nodes;
+    assert!(!added.positions.is_empty() && added.limits.is_empty() && added.closures.is_empty(), "{added:?}");
+    assert_eq!(dense_check(&task.spec, &planned.x), vec![]);
+}
+
+#[test]
+fn position_samples_shrink_the_overshoot_between_the_nodes() {
+    let unrefined = |samples: usize| {
+        let mut task = elbow_within_ten_degrees(&format!("refine = false\nposition_samples = {samples}"));
+        let planned = plan_of(&mut task);
+        assert_eq!(planned.check_nodes.len(), 0);
+        elbow_excess(&planned)
+    };
+    let (none, six) = (unrefined(0), unrefined(6));
+    assert!(none > 0.01, "without samples the elbow overshoots its limits by {none}°");
+    assert!(six < none / 4.0, "six samples a span: {six}° against {none}°");
 }

@@ -106,8 +106,10 @@ fn random_spec(seed: u64, n: usize, zero_end_velocity: bool) -> Spec {
     }
     // Every term of the objective, so that their rows are checked too.
     spec.terms = Terms { torque: 0.7, strength: 30.0, torque_change: 0.02, acceleration: 0.3, jerk: 0.01, posture: 0.4 };
-    // Check nodes of the refinement between the nodes: limit rows and closures at extra times.
-    spec.check_nodes = CheckNodes { limits: vec![0.37, 0.81], closures: vec![0.52] };
+    // Check nodes of the refinement between the nodes: limit rows, closures and position limits at extra
+    // times, and position limits at three more times a span.
+    spec.check_nodes = CheckNodes { limits: vec![0.37, 0.81], closures: vec![0.52], positions: vec![0.44] };
+    spec.between_nodes.position_samples = 3;
     spec
 }
 
@@ -273,7 +275,7 @@ fn free_root_held_by_a_contact_has_force_rows_that_match_finite_differences() {
 }
 
 /// Per-direction effort limits: the upper torque row is `τ − τ⁺`, the lower `−τ − τ⁻`, each with its own
-/// bound (and scale), and the check nodes add one node's rows each.
+/// bound (and scale), and the check nodes add one node's rows each, a position check its position rows.
 #[test]
 fn torque_rows_use_the_bound_of_their_direction() {
     use mintorque::plan::transcription::IneqRow;
@@ -300,10 +302,14 @@ fn torque_rows_use_the_bound_of_their_direction() {
         assert!((g - want).abs() < 1e-9 * (1.0 + want.abs()), "joint {i}: {row:?} = {g}, want {want}");
         assert_eq!(scales.ineq[last * per + r], bound);
     }
-    let plain = Spec { check_nodes: CheckNodes::default(), ..spec.clone() };
+    let positions = CheckNodes { positions: spec.check_nodes.positions.clone(), ..CheckNodes::default() };
+    let plain = Spec { check_nodes: positions, ..spec.clone() };
     let fewer = Transcription::new(&plain).unwrap().dims();
     assert_eq!(dims.n_ineq, fewer.n_ineq + 2 * per);
     assert_eq!(dims.n_eq, fewer.n_eq + problem.n_eq_per_node());
+    // A position check adds the position limits alone: two rows a joint here.
+    let none = Spec { check_nodes: CheckNodes::default(), ..spec.clone() };
+    assert_eq!(fewer.n_ineq, Transcription::new(&none).unwrap().dims().n_ineq + 2 * spec.model.nv());
 }
 
 /// A free-floating figure planned to a goal posture (no frame goal): the end posture is an unknown, the

@@ -2,7 +2,7 @@
 //! dense grid; where a row group misses its tolerance, add check nodes at the worst time of every
 //! offending knot span, and of every span where that group is over its bound by less than its tolerance or
 //! under it by less than ten tolerances ([`between::check_near`]; inequality rows at weight 0 in the
-//! objective, or loop closures) and re-solve from the previous solution, warm-started with its multipliers
+//! objective, the position limits alone for a missed position limit, or loop closures) and re-solve from the previous solution, warm-started with its multipliers
 //! (the new rows' start at 0), with at most the first solve's iterations — and where that does not
 //! converge, from the initial guess `guess`, cold (the bundled examples converge so where the warm re-solve
 //! crawls, docs/task-file.md). Repeat until the
@@ -12,6 +12,7 @@
 
 use super::between::{self, CheckNodes, NodeViolation};
 use super::run::{remaining, run_start, Run};
+use super::transcription::RowKind;
 use super::{SolverKind, Spec, Transcription};
 use crate::error::Result;
 use crate::solve::{Multipliers, Outcome, Progress, Settings, StopReason};
@@ -55,26 +56,21 @@ pub(super) fn enforce(
         if violations.is_empty() {
             return Ok(Enforced { run, spec, violations, rounds });
         }
-        let more = between::more_nodes(violations.iter().chain(&near), &spec.check_nodes);
+        let more = more_nodes(violations.iter().chain(&near), &spec.check_nodes, spec.duration);
         let left = settings.max_iterations.saturating_sub(run.outcome.iterations);
         let why = if !run.outcome.converged {
             None // the solve itself did not converge: its own reason stands
         } else if !b.refine {
             Some("refinement between the nodes is off".to_string())
-        } else if rounds >= b.rounds
-            || left == 0
-            || remaining(deadline).is_some_and(|t| t <= 0.0)
-            || more.limits.len() + more.closures.len() == 0
-        {
+        } else if rounds >= b.rounds || left == 0 || remaining(deadline).is_some_and(|t| t <= 0.0) || more.is_empty() {
             Some(format!(
                 "after {rounds} round(s) of refinement ({} check nodes added){}",
-                spec.check_nodes.limits.len() + spec.check_nodes.closures.len(),
+                spec.check_nodes.len(),
                 root_hint(&violations, spec.n_ctrl)
             ))
         } else {
             let warm = carried(&run.outcome.multipliers, &spec, &more)?;
-            spec.check_nodes.limits.extend(&more.limits);
-            spec.check_nodes.closures.extend(&more.closures);
+            spec.check_nodes.extend(&more);
             // Warm first, with at most the first solve's iterations; where that does not converge (the
             // augmented Lagrangian can crawl at the penalty it ended with), solve again from the guess,
             // cold, with the check nodes — within what is left of the one budget.
@@ -128,12 +124,38 @@ fn not_converged(outcome: &mut Outcome, violations: &[NodeViolation], why: &str)
     outcome.reason = StopReason::BetweenNodes(format!("{} ({why})", listed.join("; ")));
 }
 
+/// The check nodes to add for `violations`: the worst time of every offending knot span, split into
+/// closure, position and limit nodes, without times already in `nodes` (a position limit's time not where a
+/// limit node imposes it already), nor the motion's ends `0` and `duration` (s), where every inequality row
+/// holds at its end nodes already: a near span's worst time is often an end, held still on its posture.
+fn more_nodes<'a>(violations: impl IntoIterator<Item = &'a NodeViolation>, nodes: &CheckNodes, duration: f64) -> CheckNodes {
+    let mut more = CheckNodes::default();
+    // A free root's momenta hold at their collocation nodes only (more rows would over-determine its spline):
+    // check nodes do not help them, more control points do.
+    for v in violations.into_iter().filter(|v| !matches!(v.kind, RowKind::RootMomentum | RowKind::RootForce)) {
+        let end = |t: f64| t.min(duration - t) <= 1e-9 * duration;
+        for &(_, t, _) in v.spans.iter().filter(|s| v.kind == RowKind::Closure || !end(s.1)) {
+            let (have, list) = match v.kind {
+                RowKind::Closure => (&nodes.closures, &mut more.closures),
+                RowKind::AngleLimit | RowKind::SlideLimit => (&nodes.positions, &mut more.positions),
+                _ => (&nodes.limits, &mut more.limits),
+            };
+            if !have.iter().chain(list.iter()).any(|s| (s - t).abs() < 1e-12) {
+                list.push(t);
+            }
+        }
+    }
+    // A full node imposes the position limits too.
+    let full: Vec<f64> = nodes.limits.iter().chain(&more.limits).copied().collect();
+    more.positions.retain(|t| !full.iter().any(|s| (s - t).abs() < 1e-12));
+    more
+}
+
 /// The multipliers of `spec`'s transcription carried to its rows with the check nodes `more` added
 /// ([`Transcription::carried_multipliers`]).
 fn carried(multipliers: &Multipliers, spec: &Spec, more: &CheckNodes) -> Result<Multipliers> {
     let mut grown = spec.clone();
-    grown.check_nodes.limits.extend(&more.limits);
-    grown.check_nodes.closures.extend(&more.closures);
+    grown.check_nodes.extend(more);
     Ok(Transcription::new(&grown)?.carried_multipliers(more, multipliers))
 }
 
@@ -179,5 +201,32 @@ mod tests {
             held_but_near += spans.iter().filter(|s| s.2 < 0.0).count();
         }
         assert!(held_but_near > 0, "no span that holds close below the limit was listed near");
+    }
+
+    /// A missed position limit gets a position check (its rows alone), any other limit a whole check node, a
+    /// closure a closure node; a time at either end of the motion, whose end nodes hold every row already,
+    /// or where a whole check node is already, gets none.
+    #[test]
+    fn position_limits_get_position_checks_and_the_ends_none() {
+        let missed = |kind, times: &[f64]| NodeViolation {
+            constraint: String::new(),
+            time_s: times[0],
+            value: 0.0,
+            limit: 0.0,
+            excess: 1.0,
+            tolerance: 0.1,
+            unit: String::new(),
+            kind,
+            spans: times.iter().enumerate().map(|(s, &t)| (s, t, 1.0)).collect(),
+        };
+        let violations = [
+            missed(RowKind::AngleLimit, &[0.0, 0.4, 0.7, 2.0]),
+            missed(RowKind::Torque, &[0.9, 2.0]),
+            missed(RowKind::Closure, &[0.0, 1.1]),
+            missed(RowKind::SlideLimit, &[0.9, 1.3]),
+        ];
+        let have = CheckNodes { limits: vec![], closures: vec![], positions: vec![0.4] };
+        let more = more_nodes(&violations, &have, 2.0);
+        assert_eq!(more, CheckNodes { limits: vec![0.9], closures: vec![0.0, 1.1], positions: vec![0.7, 1.3] });
     }
 }

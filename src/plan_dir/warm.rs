@@ -30,7 +30,11 @@ pub fn warm_start(task: &mut Task, dir: &Path) -> Result<()> {
         ));
     }
     // The plan's check nodes (where it was refined between the nodes) come along: its multipliers have them.
-    task.spec.check_nodes = CheckNodes { limits: record.check_nodes.clone(), closures: record.closure_nodes.clone() };
+    task.spec.check_nodes = CheckNodes {
+        limits: record.check_nodes.clone(),
+        closures: record.closure_nodes.clone(),
+        positions: record.position_nodes.clone(),
+    };
     let spec = &task.spec;
     let problem = Transcription::new(spec)?;
     if record.lambda_ctrl.len() != spec.n_ctrl * problem.layout.n_lambda {

@@ -90,6 +90,9 @@ pub struct PlanRecord {
     /// The loop-closure nodes it added (s).
     #[serde(default)]
     pub closure_nodes: Vec<f64>,
+    /// The times where it added the position limits alone (s).
+    #[serde(default)]
+    pub position_nodes: Vec<f64>,
     /// The motion sampled at the output's sample rate.
     pub samples: Vec<SampleRecord>,
 }
@@ -121,6 +124,7 @@ impl PlanRecord {
             multipliers: None,
             check_nodes: Vec::new(),
             closure_nodes: Vec::new(),
+            position_nodes: Vec::new(),
             samples,
         }
     }
@@ -155,6 +159,7 @@ impl PlanRecord {
             multipliers: Some(plan.outcome.multipliers.clone()),
             check_nodes: plan.check_nodes.limits.clone(),
             closure_nodes: plan.check_nodes.closures.clone(),
+            position_nodes: plan.check_nodes.positions.clone(),
             samples: samples.iter().map(SampleRecord::from).collect(),
         }
     }

@@ -129,6 +129,8 @@ pub struct BetweenNodesSummary {
     pub check_nodes: Vec<f64>,
     /// Loop-closure nodes added by the refinement (s).
     pub closure_nodes: Vec<f64>,
+    /// Times where the refinement added the position limits alone (s).
+    pub position_nodes: Vec<f64>,
     /// Every row group still missing its tolerance, worst first: constraint, time (s), value, limit,
     /// excess and tolerance in `unit`.
     pub violations: Vec<crate::plan::NodeViolation>,
@@ -238,6 +240,7 @@ impl Summary {
                 rounds: plan.between_rounds,
                 check_nodes: plan.check_nodes.limits.clone(),
                 closure_nodes: plan.check_nodes.closures.clone(),
+                position_nodes: plan.check_nodes.positions.clone(),
                 violations: plan.between_nodes.clone(),
             },
             joints,
@@ -315,7 +318,7 @@ pub fn text_table(s: &Summary) -> String {
         );
     }
     let b = &s.between_nodes;
-    let added = b.check_nodes.len() + b.closure_nodes.len();
+    let added = b.check_nodes.len() + b.closure_nodes.len() + b.position_nodes.len();
     let refined = if b.rounds > 0 {
         format!(", after {} round(s) of refinement adding {added} check nodes", b.rounds)
     } else {

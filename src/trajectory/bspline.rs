@@ -90,7 +90,7 @@ impl BasisAt {
 
 /// Precomputed times, weights and shape functions (the paper: "the shape functions and their derivatives
 /// can be stored once the BSpline function is constructed for later use").
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct Nodes {
     /// Times in seconds, ascending for quadrature nodes; as given for a grid.
     pub t: Vec<f64>,

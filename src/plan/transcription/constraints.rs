@@ -230,11 +230,15 @@ impl Transcription<'_> {
         if raw <= 0.0 {
             return "holds".into();
         }
-        let node_rows = self.nodes.t.len() * self.ineq_rows.len();
-        if index >= node_rows {
-            return self.goal_violation(index - node_rows, raw);
+        if index >= self.goal_row0() {
+            return self.goal_violation(index - self.goal_row0(), raw);
         }
-        let (node, row) = self.decode_ineq(index);
+        let (node, row) = if index >= self.sample_row0() {
+            (None, self.samples.decode(index - self.sample_row0()).1)
+        } else {
+            let (node, row) = self.decode_ineq(index);
+            (Some(node), row)
+        };
         let prismatic = |i: usize| self.spec.model.joints[i + 1].kind == crate::model::JointKind::Prismatic;
         match row {
             IneqRow::UpperPosition(i) | IneqRow::LowerPosition(i) if prismatic(i) => {
@@ -242,6 +246,7 @@ impl Transcription<'_> {
             }
             IneqRow::UpperPosition(_) | IneqRow::LowerPosition(_) => format!("{}° past the limit", num(raw.to_degrees())),
             IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) => {
+                let node = node.expect("torque rows only at the nodes");
                 let limit = self.torque_limit_at_node(node, i, matches!(row, IneqRow::UpperTorque(_)));
                 let unit = self.force_unit(i);
                 if limit == 0.0 {

@@ -154,7 +154,7 @@ impl Transcription<'_> {
                 }
             }
         }
-        let g0 = self.n_nodes() * self.ineq_rows.len();
+        let g0 = self.goal_row0();
         self.add_goal_second_order(&weights[2][g0..], target);
     }
 

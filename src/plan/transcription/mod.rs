@@ -32,6 +32,7 @@ mod objective;
 mod problem;
 mod root;
 mod root_gradient;
+mod samples;
 mod strength;
 mod terms;
 mod values;
@@ -101,6 +102,8 @@ pub struct Transcription<'s> {
     root: root::RootRows,
     /// A free body's momentum and joint torques (`root.rs`).
     free: root::FreeBody,
+    /// The position limits at more times than the nodes (`samples.rs`; none on a grid).
+    samples: samples::PositionSamples,
     /// Per DOF `l`, the DOFs `τ_l` depends on ([`Model::torque_dofs`]): the support of its rows.
     torque_dofs: Vec<Vec<usize>>,
 }
@@ -139,6 +142,9 @@ impl<'s> Transcription<'s> {
         t.ineq_rows.retain(|r| !matches!(r, IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) if spec.model.is_unactuated(*i)));
         // The ends and the Gauss nodes are in time order: the torque-change rows join them.
         t.terms = terms::TermWork::new(&t, ordered);
+        let gauss = &t.nodes.t[1..=spec.nodes_per_span.min(ordered - 2)];
+        let per_span = spec.between_nodes.position_samples;
+        t.samples = samples::PositionSamples::new(&t.spline, gauss, per_span, &spec.check_nodes.positions, &t.ineq_rows)?;
         Ok(t)
     }
 
@@ -283,6 +289,7 @@ impl<'s> Transcription<'s> {
             goals,
             root: root::RootRows::default(),
             free: root::FreeBody::new(spec, n_lambda),
+            samples: samples::PositionSamples::default(),
             // A free body's joint torques depend on every DOF (`root.rs`).
             torque_dofs: (0..nv)
                 .map(|l| if model.is_free_floating() { (0..nv).collect() } else { model.torque_dofs(l) })

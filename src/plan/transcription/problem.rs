@@ -10,7 +10,7 @@ impl Problem for Transcription<'_> {
             n: self.layout.n,
             n_res: self.terms.n_res(),
             n_eq: self.root.n_rows() + self.n_contact_eq(),
-            n_ineq: nn * self.n_ineq_node() + self.goals.n_rows(),
+            n_ineq: nn * self.n_ineq_node() + self.samples.n_rows() + self.goals.n_rows(),
         }
     }
 
@@ -47,6 +47,7 @@ impl Problem for Transcription<'_> {
                 p.h.push(motion.clone());
             }
         }
+        p.g.extend(self.sample_patterns());
         p.g.extend(self.goal_patterns());
         self.term_patterns(&mut p);
         p
@@ -77,7 +78,8 @@ impl Problem for Transcription<'_> {
             self.root_rows(k, want_jac, out);
             self.term_rows(k, want_jac, out);
         }
-        self.goal_rows(self.n_nodes() * self.n_ineq_node(), want_jac, out);
+        self.sample_rows(want_jac, out);
+        self.goal_rows(self.goal_row0(), want_jac, out);
         self.jerk_rows(want_jac, out);
         Ok(())
     }
@@ -125,37 +127,15 @@ impl Problem for Transcription<'_> {
 
     fn scales(&self) -> Scales {
         let nn = self.n_nodes();
-        let per_node: Vec<f64> = self
-            .ineq_rows
-            .iter()
-            .map(|row| match *row {
-                IneqRow::UpperPosition(i) | IneqRow::LowerPosition(i) => {
-                    let range = self.limits_up[i] - self.limits_low[i];
-                    if range.is_finite() && range > 0.0 {
-                        range
-                    } else {
-                        1.0
-                    }
-                }
-                // An unactuated joint's bound is 0: its rows are scaled by the figure's weight (N, N·m per m).
-                IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) if self.spec.model.is_unactuated(i) => {
-                    self.total_weight.max(1.0)
-                }
-                IneqRow::UpperTorque(i) => self.torque_bound(i, true).max(1e-9),
-                IneqRow::LowerTorque(i) => self.torque_bound(i, false).max(1e-9),
-                IneqRow::Push(_) | IneqRow::Friction(..) => self.total_weight.max(1.0),
-                IneqRow::Balance(4) => self.total_weight.max(1.0),
-                IneqRow::Balance(_) => (0.1 * self.total_weight).max(1.0),
-                IneqRow::Collision(_) => 1.0, // metres, like the contacts
-            })
-            .collect();
+        let per_node: Vec<f64> = self.ineq_rows.iter().map(|row| self.ineq_scale(*row)).collect();
         // Goals in metres (like the contacts), their orientations as cosines.
         let goals = std::iter::repeat_n(1.0, self.goals.n_rows());
         // A free root's momenta by the figure's weight, as its force rows were (kg·m/s against N: measured, a
         // mass scale was not tried); closures in metres.
         let root = std::iter::repeat_n(self.total_weight.max(1.0), self.root.n_rows());
         let eq = root.chain(std::iter::repeat_n(1.0, self.n_contact_eq())).collect();
-        Scales { eq, ineq: (0..nn).flat_map(|_| per_node.iter().copied()).chain(goals).collect() }
+        let ineq = (0..nn).flat_map(|_| per_node.iter().copied()).chain(self.sample_scales()).chain(goals).collect();
+        Scales { eq, ineq }
     }
 
     fn row_name(&self, family: RowFamily, index: usize) -> String {
@@ -172,10 +152,11 @@ impl Problem for Transcription<'_> {
     }
 
     fn constraint_name(&self, kind: ConstraintKind, index: usize) -> String {
-        let joint = |i: usize| self.spec.model.joints[i + 1].name.clone();
         match kind {
-            ConstraintKind::Inequality if index >= self.n_nodes() * self.n_ineq_node() => {
-                self.goal_row_name(index - self.n_nodes() * self.n_ineq_node())
+            ConstraintKind::Inequality if index >= self.goal_row0() => self.goal_row_name(index - self.goal_row0()),
+            ConstraintKind::Inequality if index >= self.sample_row0() => {
+                let (k, row) = self.samples.decode(index - self.sample_row0());
+                format!("{} at t = {:.3} s", self.ineq_row_name(row), self.samples.nodes.t[k])
             }
             ConstraintKind::Equality if index < self.contact_eq0() => self.root_row_name(index),
             ConstraintKind::Equality => {
@@ -192,27 +173,56 @@ impl Problem for Transcription<'_> {
             }
             ConstraintKind::Inequality => {
                 let (k, row) = self.decode_ineq(index);
-                let t = self.nodes.t[k];
-                let contact = |c: usize| self.spec.contacts[c].name.clone();
-                let what = match row {
-                    IneqRow::UpperPosition(i) => format!("upper position limit of joint \"{}\"", joint(i)),
-                    IneqRow::LowerPosition(i) => format!("lower position limit of joint \"{}\"", joint(i)),
-                    IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) if self.spec.model.is_unactuated(i) => {
-                        format!("zero momentum along the free root's joint \"{}\"", joint(i))
-                    }
-                    IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) => {
-                        let what = if self.limit_varies(i) { "strength" } else { "torque" };
-                        let sign = if matches!(row, IneqRow::UpperTorque(_)) { "+" } else { "−" };
-                        format!("{what} limit ({sign}) of joint \"{}\"", joint(i))
-                    }
-                    IneqRow::Push(c) => format!("push-only contact force of \"{}\"", contact(c)),
-                    IneqRow::Friction(c, _) => format!("friction cone of \"{}\"", contact(c)),
-                    IneqRow::Balance(4) => "balance: feet stay loaded".to_string(),
-                    IneqRow::Balance(_) => "balance: centre of pressure inside the support".to_string(),
-                    IneqRow::Collision(p) => format!("distance between {}", self.collisions.describe(self.spec, p)),
-                };
+                let (t, what) = (self.nodes.t[k], self.ineq_row_name(row));
                 format!("{what} at t = {t:.3} s")
             }
+        }
+    }
+}
+
+impl Transcription<'_> {
+    /// An inequality row's scale: a joint's range, a torque bound, the figure's weight, metres.
+    pub(super) fn ineq_scale(&self, row: IneqRow) -> f64 {
+        match row {
+            IneqRow::UpperPosition(i) | IneqRow::LowerPosition(i) => {
+                let range = self.limits_up[i] - self.limits_low[i];
+                if range.is_finite() && range > 0.0 {
+                    range
+                } else {
+                    1.0
+                }
+            }
+            // An unactuated joint's bound is 0: its rows are scaled by the figure's weight (N, N·m per m).
+            IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) if self.spec.model.is_unactuated(i) => self.total_weight.max(1.0),
+            IneqRow::UpperTorque(i) => self.torque_bound(i, true).max(1e-9),
+            IneqRow::LowerTorque(i) => self.torque_bound(i, false).max(1e-9),
+            IneqRow::Push(_) | IneqRow::Friction(..) => self.total_weight.max(1.0),
+            IneqRow::Balance(4) => self.total_weight.max(1.0),
+            IneqRow::Balance(_) => (0.1 * self.total_weight).max(1.0),
+            IneqRow::Collision(_) => 1.0, // metres, like the contacts
+        }
+    }
+
+    /// What an inequality row constrains, without its time: `upper position limit of joint "elbow"`.
+    fn ineq_row_name(&self, row: IneqRow) -> String {
+        let joint = |i: usize| self.spec.model.joints[i + 1].name.clone();
+        let contact = |c: usize| self.spec.contacts[c].name.clone();
+        match row {
+            IneqRow::UpperPosition(i) => format!("upper position limit of joint \"{}\"", joint(i)),
+            IneqRow::LowerPosition(i) => format!("lower position limit of joint \"{}\"", joint(i)),
+            IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) if self.spec.model.is_unactuated(i) => {
+                format!("zero momentum along the free root's joint \"{}\"", joint(i))
+            }
+            IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) => {
+                let what = if self.limit_varies(i) { "strength" } else { "torque" };
+                let sign = if matches!(row, IneqRow::UpperTorque(_)) { "+" } else { "−" };
+                format!("{what} limit ({sign}) of joint \"{}\"", joint(i))
+            }
+            IneqRow::Push(c) => format!("push-only contact force of \"{}\"", contact(c)),
+            IneqRow::Friction(c, _) => format!("friction cone of \"{}\"", contact(c)),
+            IneqRow::Balance(4) => "balance: feet stay loaded".to_string(),
+            IneqRow::Balance(_) => "balance: centre of pressure inside the support".to_string(),
+            IneqRow::Collision(p) => format!("distance between {}", self.collisions.describe(self.spec, p)),
         }
     }
 }
