@@ -83,7 +83,7 @@ pub(super) struct TermWork {
     inv_range: Vec<f64>,
     /// Two times of each knot span for its `q⃛`, and their distance.
     spans: Vec<(BasisAt, BasisAt, f64)>,
-    /// Each node's Jacobian columns (`motion ++ λ`), the torque row's values, the previous node's torques.
+    /// The paired nodes' Jacobian columns (`motion ++ λ`), the torque row's values, the previous node's torques.
     columns: Vec<Vec<usize>>,
     chain: Vec<f64>,
     previous: Vec<f64>,
@@ -119,7 +119,10 @@ impl TermWork {
                 }
             })
             .collect();
-        let columns = t.nodes.basis.iter().map(|b| t.node_columns(b)).map(|(m, l)| m.into_iter().chain(l).collect()).collect();
+        // The torque-change pairs' nodes only (none without the term): a dense grid has hundreds of nodes.
+        let paired = if pairs > 0 { pairs + 1 } else { 0 };
+        let columns =
+            t.nodes.basis[..paired].iter().map(|b| t.node_columns(b)).map(|(m, l)| m.into_iter().chain(l).collect()).collect();
         let width = 4 * (nv + t.layout.n_lambda);
         let (chain, previous) = (vec![0.0; width], vec![0.0; nv]);
         TermWork { acceleration, torque_change, jerk, posture, end, inv_range, spans, columns, chain, previous }
