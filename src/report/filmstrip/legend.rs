@@ -19,7 +19,14 @@ impl Layout {
             [0.0, 0.5, 1.0].iter().map(|r| format!(r#"<stop offset="{r}" stop-color="{}"/>"#, load_colour(*r))).collect();
         let _ = writeln!(s, r#"<defs><linearGradient id="joint-load">{stops}</linearGradient></defs>"#);
         let mut x = PAD;
-        x = text(s, x, y, "joints: |τ| / strength (no strength: / the plan's peak |τ|)  0");
+        x = text(s, x, y, "joints: |τ| / strength (no strength: / the plan's peak |τ|)") + 10.0;
+        // The bar's "0" ends just before it, wherever the label's true width put its end.
+        let _ = writeln!(
+            s,
+            r##"<text x="{:.2}" y="{:.2}" font-family="{FONT}" font-size="12" text-anchor="end" fill="#1d2733">0</text>"##,
+            x - 4.0,
+            y + 14.0
+        );
         let _ = writeln!(
             s,
             r##"<rect x="{x:.2}" y="{:.2}" width="{BAR}" height="10" fill="url(#joint-load)" stroke="#2b3a4a" stroke-width="0.6"/>"##,
