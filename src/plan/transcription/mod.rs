@@ -32,7 +32,7 @@ mod objective;
 mod problem;
 mod root;
 mod root_gradient;
-mod samples;
+pub(crate) mod samples;
 mod strength;
 mod terms;
 mod values;

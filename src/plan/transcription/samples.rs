@@ -68,6 +68,15 @@ impl PositionSamples {
     }
 }
 
+/// The times (s) of `count` position samples in knot span `span` of `spec`'s spline (module docs).
+pub(crate) fn span_times(spec: &crate::plan::Spec, span: usize, count: usize) -> crate::Result<Vec<f64>> {
+    let spline = CubicBSpline::new(spec.n_ctrl, spec.duration)?;
+    let h = spline.knot_spacing();
+    let gauss = spline.quadrature_nodes(spec.nodes_per_span)?;
+    let relative: Vec<f64> = gauss.t[..spec.nodes_per_span].iter().map(|t| t / h).collect();
+    Ok(bisections(&relative, count).into_iter().map(|r| (span as f64 + r) * h).collect())
+}
+
 /// `count` midpoints added one at a time to the points `nodes` (in `[0, 1)`, ascending) on the circle of
 /// circumference 1: each bisects the widest gap (the first in order on a tie), the gap across 1 ≡ 0 included.
 fn bisections(nodes: &[f64], count: usize) -> Vec<f64> {
