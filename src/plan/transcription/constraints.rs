@@ -7,6 +7,7 @@ use crate::dynamics::kinematics;
 use crate::dynamics::point_force::point_jacobian;
 use crate::solve::{ConstraintKind, Evaluation};
 use crate::spatial::{Force, Vec3};
+use crate::trajectory::bspline::BasisAt;
 
 /// One inequality row at a node.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -41,6 +42,17 @@ pub(super) fn balance_coefficients(row: usize, b: &crate::plan::spec::Balance) -
         2 => [1.0, 0.0, 0.0, 0.0, z0, -b.y[1]],
         3 => [-1.0, 0.0, 0.0, 0.0, -z0, b.y[0]],
         _ => [0.0, 0.0, 0.0, 0.0, 0.0, -1.0],
+    }
+}
+
+/// A position row's Jacobian `±∂qᵢ/∂x` at `basis`: the basis values at the joint's owned control points
+/// (the row's columns, [`Transcription::joint_columns`]).
+pub(super) fn position_jacobian(layout: &super::Layout, basis: &BasisAt, sign: f64, vals: &mut [f64]) {
+    vals.fill(0.0);
+    for (a, slot) in layout.motion_slots(basis.first).iter().enumerate() {
+        if let Some(slot) = slot {
+            vals[*slot] += sign * basis.b[a];
+        }
     }
 }
 
@@ -115,13 +127,7 @@ impl Transcription<'_> {
                     let sign = if upper { 1.0 } else { -1.0 };
                     out.g[gi] = if upper { w.q[i] - self.limits_up[i] } else { self.limits_low[i] - w.q[i] };
                     if want_jac {
-                        let vals = out.jg.row_values_mut(gi);
-                        vals.fill(0.0);
-                        for (a, slot) in self.layout.motion_slots(basis.first).iter().enumerate() {
-                            if let Some(slot) = slot {
-                                vals[*slot] += sign * basis.b[a];
-                            }
-                        }
+                        position_jacobian(&self.layout, &basis, sign, out.jg.row_values_mut(gi));
                     }
                 }
                 IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) if self.spec.model.is_unactuated(i) => {

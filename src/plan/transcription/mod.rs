@@ -142,9 +142,7 @@ impl<'s> Transcription<'s> {
         t.ineq_rows.retain(|r| !matches!(r, IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) if spec.model.is_unactuated(*i)));
         // The ends and the Gauss nodes are in time order: the torque-change rows join them.
         t.terms = terms::TermWork::new(&t, ordered);
-        let gauss = &t.nodes.t[1..=spec.nodes_per_span.min(ordered - 2)];
-        let per_span = spec.between_nodes.position_samples;
-        t.samples = samples::PositionSamples::new(&t.spline, gauss, per_span, &spec.check_nodes.positions, &t.ineq_rows)?;
+        t.samples = samples::PositionSamples::new(spec, &t.spline, &t.ineq_rows)?;
         Ok(t)
     }
 

@@ -30,10 +30,7 @@ impl Problem for Transcription<'_> {
             }
             for row in &self.ineq_rows {
                 p.g.push(match *row {
-                    IneqRow::UpperPosition(i) | IneqRow::LowerPosition(i) => (basis.first..basis.first + 4)
-                        .filter(|&j| self.layout.owns(j))
-                        .filter_map(|j| self.layout.joint_var(j, i))
-                        .collect(),
+                    IneqRow::UpperPosition(i) | IneqRow::LowerPosition(i) => self.joint_columns(basis.first, i),
                     IneqRow::UpperTorque(i) | IneqRow::LowerTorque(i) => self.supported_columns(basis, &self.torque_dofs[i]),
                     IneqRow::Balance(_) => both.clone(),
                     IneqRow::Push(c) | IneqRow::Friction(c, _) => self.contact_columns(basis, c),

@@ -17,7 +17,9 @@
 //! `K = 6` adds 0.415, 0.585 and the knot. The rows come after the nodes' rows and before the goals'
 //! (the check nodes the refinement adds extend the nodes' rows).
 
+use super::constraints::position_jacobian;
 use super::{IneqRow, Transcription};
+use crate::plan::Spec;
 use crate::solve::Evaluation;
 use crate::trajectory::bspline::{CubicBSpline, Nodes};
 
@@ -30,30 +32,22 @@ pub(super) struct PositionSamples {
 }
 
 impl PositionSamples {
-    /// `per_span` times in each knot span of `spline` (module docs), then the refinement's `checks` (s), with
-    /// the position rows of `node_rows`; none without position rows. `gauss` are the quadrature nodes of the
-    /// first span (s).
-    pub(super) fn new(
-        spline: &CubicBSpline,
-        gauss: &[f64],
-        per_span: usize,
-        checks: &[f64],
-        node_rows: &[IneqRow],
-    ) -> crate::Result<Self> {
+    /// `spec`'s `position_samples` times in each knot span of `spline` (module docs), then the refinement's
+    /// position checks, with the position rows of `node_rows`; none without position rows.
+    pub(super) fn new(spec: &Spec, spline: &CubicBSpline, node_rows: &[IneqRow]) -> crate::Result<Self> {
         let rows: Vec<IneqRow> =
             node_rows.iter().copied().filter(|r| matches!(r, IneqRow::UpperPosition(_) | IneqRow::LowerPosition(_))).collect();
         if rows.is_empty() {
             return Ok(PositionSamples::default());
         }
         let h = spline.knot_spacing();
-        let relative: Vec<f64> = gauss.iter().map(|t| t / h).collect();
-        let within = bisections(&relative, per_span);
+        let within = within_span(spec, spec.between_nodes.position_samples)?;
         // The knot t = 0 is an end node already.
         let mut times: Vec<f64> = (0..spline.n_spans())
             .flat_map(|s| within.iter().map(move |r| (s as f64 + r) * h))
             .filter(|&t| t > 1e-9 * h)
             .collect();
-        times.extend(checks);
+        times.extend(&spec.check_nodes.positions);
         Ok(PositionSamples { nodes: spline.grid(&times)?, rows })
     }
 
@@ -68,13 +62,14 @@ impl PositionSamples {
     }
 }
 
-/// The times (s) of `count` position samples in knot span `span` of `spec`'s spline (module docs).
-pub(crate) fn span_times(spec: &crate::plan::Spec, span: usize, count: usize) -> crate::Result<Vec<f64>> {
+/// Where `count` position samples lie in a knot span of `spec`'s spline, as fractions of the span in
+/// `[0, 1)` (module docs): the bisections of the gaps between its quadrature nodes.
+pub(crate) fn within_span(spec: &Spec, count: usize) -> crate::Result<Vec<f64>> {
     let spline = CubicBSpline::new(spec.n_ctrl, spec.duration)?;
     let h = spline.knot_spacing();
     let gauss = spline.quadrature_nodes(spec.nodes_per_span)?;
     let relative: Vec<f64> = gauss.t[..spec.nodes_per_span].iter().map(|t| t / h).collect();
-    Ok(bisections(&relative, count).into_iter().map(|r| (span as f64 + r) * h).collect())
+    Ok(bisections(&relative, count))
 }
 
 /// `count` midpoints added one at a time to the points `nodes` (in `[0, 1)`, ascending) on the circle of
@@ -109,8 +104,7 @@ impl Transcription<'_> {
         (0..self.samples.n_rows()).map(|r| {
             let (k, row) = self.samples.decode(r);
             let (IneqRow::UpperPosition(i) | IneqRow::LowerPosition(i)) = row else { unreachable!("position rows only") };
-            let first = self.samples.nodes.basis[k].first;
-            (first..first + 4).filter(|&j| self.layout.owns(j)).filter_map(|j| self.layout.joint_var(j, i)).collect()
+            self.joint_columns(self.samples.nodes.basis[k].first, i)
         })
     }
 
@@ -130,13 +124,7 @@ impl Transcription<'_> {
             out.g[g0 + r] = if upper { q - self.limits_up[i] } else { self.limits_low[i] - q };
             if want_jac {
                 let sign = if upper { 1.0 } else { -1.0 };
-                let vals = out.jg.row_values_mut(g0 + r);
-                vals.fill(0.0);
-                for (a, slot) in self.layout.motion_slots(basis.first).iter().enumerate() {
-                    if let Some(slot) = slot {
-                        vals[*slot] += sign * basis.b[a];
-                    }
-                }
+                position_jacobian(&self.layout, basis, sign, out.jg.row_values_mut(g0 + r));
             }
         }
     }

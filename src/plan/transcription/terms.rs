@@ -177,7 +177,7 @@ impl Transcription<'_> {
 
     /// The columns of joint `i` at the four control points from `first`: one per unknown (a control point
     /// sharing its owner's unknowns adds none), in the order of [`super::Layout::motion_slots`].
-    fn joint_columns(&self, first: usize, i: usize) -> Vec<usize> {
+    pub(super) fn joint_columns(&self, first: usize, i: usize) -> Vec<usize> {
         (first..first + 4).filter(|&j| self.layout.owns(j)).filter_map(|j| self.layout.joint_var(j, i)).collect()
     }
 
