@@ -139,6 +139,12 @@ impl Collisions {
         }
     }
 
+    /// Whether joint `j` moves pair `p`: it is on either body's path.
+    pub fn moved_by(&self, p: usize, j: usize) -> bool {
+        let pair = &self.pairs[p];
+        pair.path.contains(&j) || matches!(&pair.other, Other::Capsule { path, .. } if path.contains(&j))
+    }
+
     /// The two solids of pair `p`, for messages: `"lower_legs" and obstacle "bar"`.
     pub fn describe(&self, spec: &Spec, p: usize) -> String {
         let pair = &self.pairs[p];
@@ -184,19 +190,76 @@ impl Transcription<'_> {
         }
     }
 
-    /// `∂/∂q Σ_r w_r (margin − d_r)` over node rows `weights` (one per inequality row) at `work.q`, into
-    /// `out[..nv]` — the gradient the second-order term differences.
-    pub(super) fn collision_gradient(&mut self, weights: &[f64], out: &mut [f64]) {
-        out.fill(0.0);
-        kinematics::placements(&self.spec.model, &mut self.data, &self.work.q);
-        for (r, row) in self.ineq_rows.iter().enumerate() {
-            if let (super::IneqRow::Collision(p), w) = (*row, weights[r]) {
-                if w != 0.0 {
-                    let sep = self.collisions.separation(self.spec, &self.data, p);
-                    self.collisions.add_gradient(&self.data, p, &sep, -w, out);
-                }
+    /// `∇²_q Σ_r w_r (margin − d_r)` over node rows `weights` (one per inequality row) at `work.q`, into the
+    /// `q` block of `hess.s` (dimension `d` as for the nodes): forward differences of each weighted pair's
+    /// exact gradient `−w ∂d/∂q` along the `qⱼ` that move it, symmetrised (as [`Self::q_hessian`] does for
+    /// a whole gradient). A pair's distance depends only on the joints on its bodies' paths, so along any
+    /// other `qⱼ` its difference is zero and is not computed: the whole gradient differenced along every
+    /// `qⱼ` took a third of `twist_lift`'s solve. `work.q` is restored.
+    pub(super) fn collision_hessian(&mut self, weights: &[f64]) {
+        let (model, nv) = (&self.spec.model, self.layout.nv);
+        let d = 3 * nv + self.layout.n_lambda;
+        let h = &mut self.hess;
+        h.z[..nv].copy_from_slice(&self.work.q);
+        h.s.fill(0.0);
+        // The weighted pairs (p, −w), their gradients g at q, one row of `nv` each,
+        h.pairs.clear();
+        for (row, &w) in self.ineq_rows.iter().zip(weights) {
+            if let (super::IneqRow::Collision(p), true) = (*row, w != 0.0) {
+                h.pairs.push((p, -w));
             }
         }
+        h.pair_gradients.clear();
+        h.pair_gradients.resize(h.pairs.len() * nv, 0.0);
+        kinematics::placements(model, &mut self.data, &self.work.q);
+        for (&(p, w), out) in h.pairs.iter().zip(h.pair_gradients.chunks_exact_mut(nv)) {
+            let sep = self.collisions.separation(self.spec, &self.data, p);
+            self.collisions.add_gradient(&self.data, p, &sep, w, out);
+        }
+        // and their sum g(q)
+        h.grad[..nv].fill(0.0);
+        for base in h.pair_gradients.chunks_exact(nv) {
+            h.grad[..nv].iter_mut().zip(base).for_each(|(g, b)| *g += b);
+        }
+        for j in 0..nv {
+            if !h.pairs.iter().any(|&(p, _)| self.collisions.moved_by(p, j)) {
+                continue;
+            }
+            // q + εⱼ eⱼ, εⱼ = STEP·(1 + |qⱼ|)
+            let q = &mut self.work.q;
+            q.copy_from_slice(&h.z[..nv]);
+            q[j] += super::hessian::STEP * (1.0 + q[j].abs());
+            let epsilon = q[j] - h.z[j];
+            kinematics::placements(model, &mut self.data, q);
+            // Σ over the moved pairs of g(q + εⱼ eⱼ) − g(q) (their g(q) summed apart unless all are moved)
+            let column = &mut h.grad_perturbed[..nv];
+            column.fill(0.0);
+            let mut all = true;
+            for &(p, w) in &h.pairs {
+                if self.collisions.moved_by(p, j) {
+                    let sep = self.collisions.separation(self.spec, &self.data, p);
+                    self.collisions.add_gradient(&self.data, p, &sep, w, column);
+                } else {
+                    all = false;
+                }
+            }
+            if all {
+                column.iter_mut().zip(&h.grad).for_each(|(c, b)| *c -= b);
+            } else {
+                for (&(p, _), base) in h.pairs.iter().zip(h.pair_gradients.chunks_exact(nv)) {
+                    if self.collisions.moved_by(p, j) {
+                        column.iter_mut().zip(base).for_each(|(c, b)| *c -= b);
+                    }
+                }
+            }
+            // S[i][j] = S[j][i] += ½ (g(q + εⱼ eⱼ) − g(q))ᵢ / εⱼ
+            for (i, c) in column.iter().enumerate() {
+                let v = 0.5 * c / epsilon;
+                h.s[i * d + j] += v;
+                h.s[j * d + i] += v;
+            }
+        }
+        self.work.q.copy_from_slice(&h.z[..nv]);
     }
 
     /// The margin (m) of collision row `p`.

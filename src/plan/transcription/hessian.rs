@@ -45,15 +45,15 @@ use crate::spatial::{Motion, Vec3};
 use crate::trajectory::bspline::BasisAt;
 
 /// Relative step of the forward differences: `ε = STEP·(1 + |zᵢ|)`, about √(machine ε).
-const STEP: f64 = 1e-7;
+pub(super) const STEP: f64 = 1e-7;
 
 /// Scratch for the second-order term, allocated once per transcription.
 #[derive(Clone, Debug)]
 pub(super) struct HessianWork {
     /// The node state `(q, q̇, q̈, λ)` and `∇φ` there; a perturbed gradient.
-    z: Vec<f64>,
-    grad: Vec<f64>,
-    grad_perturbed: Vec<f64>,
+    pub(super) z: Vec<f64>,
+    pub(super) grad: Vec<f64>,
+    pub(super) grad_perturbed: Vec<f64>,
     /// `∇²φ`, `d × d` row-major, `d = 3nv + n_λ`.
     pub(super) s: Vec<f64>,
     /// Per-node weights: `ω` (nv) and `ω_W`.
@@ -66,6 +66,10 @@ pub(super) struct HessianWork {
     pub(super) omega_w: [f64; 6],
     /// The multipliers of a free root's momentum rows at the node (`root.rs`).
     pub(super) root_w: [f64; 6],
+    /// The weighted collision pairs `(p, −w)` of a node and their gradients, `nv` each
+    /// (`Transcription::collision_hessian`).
+    pub(super) pairs: Vec<(usize, f64)>,
+    pub(super) pair_gradients: Vec<f64>,
     /// The node's unknowns in groups, and one row of their entries (`add_mapped`).
     pub(super) groups: Vec<Group>,
     pub(super) row: Vec<f64>,
@@ -104,6 +108,8 @@ impl HessianWork {
             sigma: [vec![0.0; nv], vec![0.0; nv]],
             omega_w: [0.0; 6],
             root_w: [0.0; 6],
+            pairs: Vec::new(),
+            pair_gradients: Vec::new(),
             groups: Vec::with_capacity(8),
             row: vec![0.0; nv.max(nl)],
             omega_hat: vec![0.0; nv],
@@ -149,7 +155,7 @@ impl Transcription<'_> {
                 if self.ineq_rows.iter().zip(rows).any(collides) {
                     let basis = self.nodes.basis[k];
                     self.state_at(&basis);
-                    self.q_hessian(&mut |t: &mut Self, out: &mut [f64]| t.collision_gradient(rows, out));
+                    self.collision_hessian(rows);
                     self.add_mapped(&basis, 1, target);
                 }
             }
