@@ -57,7 +57,8 @@ pub struct SparseMatrix {
     row_ptr: Vec<usize>,
     col_idx: Vec<usize>,
     values: Vec<f64>,
-    /// The runs of rows with one column list, in row order (fixed with the pattern; see [`gram`]).
+    /// The runs of rows with one column list, in the order of their first rows (fixed with the pattern; see
+    /// [`gram`]).
     runs: Vec<Run>,
 }
 

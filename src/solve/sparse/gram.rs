@@ -1,41 +1,43 @@
-//! The Gram matrix `JᵀDJ` of a [`SparseMatrix`], added row group by row group: consecutive rows with one
-//! column list (a joint's torque rows at the nodes of one knot span) are one [`Run`], found once when the
-//! pattern is built, and go to the target together ([`SymmetricMatrix::add_outer_rows`]).
+//! The Gram matrix `JᵀDJ` of a [`SparseMatrix`], added row group by row group: the rows with one column list
+//! (the torque rows of the joints of one limb at the nodes of one knot span: each depends on the same
+//! control points of the same joints) are one [`Run`], found once when the pattern is built, and go to the
+//! target together, up to eight at a time ([`SymmetricMatrix::add_outer_rows`]): each entry of the target is
+//! loaded and stored once per eight rows instead of once per row.
 
 use super::{PatternError, SparseMatrix};
 use crate::solve::linalg::SymmetricMatrix;
+use std::collections::HashMap;
 
-/// Consecutive rows with the same column list (in the same order).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// The rows with the same column list (in the same order), wherever they are.
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub(super) struct Run {
-    /// The rows.
-    start: usize,
-    end: usize,
+    /// The rows, ascending.
+    rows: Vec<usize>,
     /// The smallest and the largest column (`None` for empty rows).
     span: Option<(usize, usize)>,
     /// Whether the columns ascend.
     ascending: bool,
 }
 
-/// The runs of the pattern `row_ptr`, `col_idx` (CSR), in row order.
+/// The runs of the pattern `row_ptr`, `col_idx` (CSR), in the order of their first rows.
 pub(super) fn runs(row_ptr: &[usize], col_idx: &[usize]) -> Vec<Run> {
     let cols = |i: usize| &col_idx[row_ptr[i]..row_ptr[i + 1]];
-    let nrows = row_ptr.len() - 1;
     let mut runs: Vec<Run> = Vec::new();
-    let mut start = 0;
-    while start < nrows {
-        // The run from `start`: up to the first row with other columns.
-        let end = (start + 1..nrows).find(|&i| cols(i) != cols(start)).unwrap_or(nrows);
-        let ascending = cols(start).windows(2).all(|c| c[0] < c[1]);
-        runs.push(Run { start, end, span: row_span(cols(start)), ascending });
-        start = end;
+    let mut index: HashMap<&[usize], usize> = HashMap::new();
+    for i in 0..row_ptr.len() - 1 {
+        let run = *index.entry(cols(i)).or_insert_with(|| {
+            let ascending = cols(i).windows(2).all(|c| c[0] < c[1]);
+            runs.push(Run { rows: Vec::new(), span: row_span(cols(i)), ascending });
+            runs.len() - 1
+        });
+        runs[run].rows.push(i);
     }
     runs
 }
 
 /// The one run of `nrows` rows without entries (none when there are no rows).
 pub(super) fn empty_rows(nrows: usize) -> Vec<Run> {
-    (nrows > 0).then_some(Run { start: 0, end: nrows, span: None, ascending: true }).into_iter().collect()
+    (nrows > 0).then(|| Run { rows: (0..nrows).collect(), span: None, ascending: true }).into_iter().collect()
 }
 
 impl SparseMatrix {
@@ -59,29 +61,23 @@ impl SparseMatrix {
         }
         let bandwidth = target.bandwidth();
         let weight = |i: usize| weights.map_or(1.0, |w| w[i]);
-        // Consecutive rows of one pattern (one run; rows of weight 0 skipped) go to the target as one group
-        // of at most GROUP rows, gathered on the stack.
+        // The rows of one pattern (one run; rows of weight 0 skipped) go to the target in groups of at most
+        // GROUP rows, gathered on the stack.
         const GROUP: usize = 8;
         let mut group: [(f64, &[f64]); GROUP] = [(0.0, &[]); GROUP];
         for run in &self.runs {
-            let mut i = run.start;
-            while i < run.end {
-                let (mut next, mut len, mut weighted) = (i, 0, None);
-                while next < run.end && len < GROUP {
-                    if weight(next) != 0.0 {
-                        weighted.get_or_insert(next);
-                        group[len] = (weight(next), self.row_values(next));
-                        len += 1;
-                    }
-                    next += 1;
+            let mut rows = run.rows.iter().copied().filter(|&i| weight(i) != 0.0).peekable();
+            let (Some(&first), Some((lo, hi))) = (rows.peek(), run.span) else { continue };
+            if hi - lo > bandwidth {
+                return Err(PatternError::OutsideBand { row: first, first: lo, last: hi, bandwidth });
+            }
+            while rows.peek().is_some() {
+                let mut len = 0;
+                for i in rows.by_ref().take(GROUP) {
+                    group[len] = (weight(i), self.row_values(i));
+                    len += 1;
                 }
-                if let (Some(row), Some((first, last))) = (weighted, run.span) {
-                    if last - first > bandwidth {
-                        return Err(PatternError::OutsideBand { row, first, last, bandwidth });
-                    }
-                    add_rows(target, self.row_cols(i), run.ascending, &group[..len]);
-                }
-                i = next;
+                add_rows(target, self.row_cols(first), run.ascending, &group[..len]);
             }
         }
         Ok(())
