@@ -171,7 +171,8 @@ fn a_warm_start_at_an_optimum_is_immediate() {
 #[test]
 fn one_iteration_budget_for_every_phase() {
     let (crouch, budget) = crouch_that_stalls();
-    for (solver, t, budget) in [(SolverKind::Structured, task("weight_lift_earth"), 40), (SolverKind::InteriorPoint, crouch, budget)]
+    for (solver, t, budget) in
+        [(SolverKind::Structured, task("weight_lift_earth"), 40), (SolverKind::InteriorPoint, crouch, budget)]
     {
         let settings = Settings { max_iterations: budget, ..t.settings.clone() };
         let planned = plan::plan(&t.spec, solver, &settings, &mut |_| {}).unwrap();
