@@ -197,4 +197,29 @@ mod tests {
             assert_eq!(g, one_by_one);
         }
     }
+
+    /// Rows of one column list that are not consecutive (a limb's torque rows at the nodes of a span, other
+    /// joints' rows between them) are one run, and their Gram matrix is the dense `JᵀDJ`.
+    #[test]
+    fn rows_of_one_column_list_anywhere_are_one_run() {
+        let n = 10;
+        let patterns = [vec![0, 1, 2, 3], vec![2, 4, 5], vec![6, 7, 8, 9]];
+        let rows: Vec<Vec<usize>> = (0..13).map(|i| patterns[i % 3].clone()).collect();
+        let mut m = SparseMatrix::from_rows(n, &rows).unwrap();
+        assert_eq!(m.runs.len(), 3);
+        assert_eq!(m.runs[0].rows, vec![0, 3, 6, 9, 12]);
+        for i in 0..m.nrows() {
+            for (k, v) in m.row_values_mut(i).iter_mut().enumerate() {
+                *v = ((i * 11 + k * 5) % 13) as f64 / 4.0 - 1.1;
+            }
+        }
+        let weights: Vec<f64> = (0..m.nrows()).map(|i| if i == 4 { 0.0 } else { 0.3 + i as f64 }).collect();
+        let d = m.to_dense();
+        let w = nalgebra::DMatrix::from_diagonal(&nalgebra::DVector::from_column_slice(&weights));
+        let expect = d.transpose() * w * &d;
+        for mut g in [SymmetricMatrix::banded(n, 3), SymmetricMatrix::dense(n)] {
+            m.add_gram_to(Some(&weights), &mut g).unwrap();
+            assert!((g.to_dense() - &expect).amax() < 1e-12);
+        }
+    }
 }
