@@ -112,6 +112,12 @@ mod tests {
     use super::*;
     use crate::solve::sparse::tests::example;
 
+    /// `JᵀDJ` of `m` from its dense form.
+    fn dense_gram(m: &SparseMatrix, weights: &[f64]) -> nalgebra::DMatrix<f64> {
+        let d = m.to_dense();
+        d.transpose() * nalgebra::DMatrix::from_diagonal(&nalgebra::DVector::from_column_slice(weights)) * &d
+    }
+
     #[test]
     fn rows_without_entries_add_nothing() {
         let m = SparseMatrix::without_entries(3, 5);
@@ -130,9 +136,7 @@ mod tests {
         for banded in [true, false] {
             let mut g = if banded { SymmetricMatrix::banded(4, 3) } else { SymmetricMatrix::dense(4) };
             m.add_gram_to(Some(&weights), &mut g).unwrap();
-            let d = m.to_dense();
-            let expect = d.transpose() * nalgebra::DMatrix::from_diagonal(&nalgebra::DVector::from_column_slice(&weights)) * &d;
-            assert!((g.to_dense() - expect).amax() < 1e-15);
+            assert!((g.to_dense() - dense_gram(&m, &weights)).amax() < 1e-15);
         }
         let mut narrow = SymmetricMatrix::banded(4, 2);
         assert!(matches!(m.add_gram_to(None, &mut narrow), Err(PatternError::OutsideBand { row: 2, .. })));
@@ -156,9 +160,7 @@ mod tests {
                     *v = ((i * 3 + c * 5) % 7) as f64 - 2.5;
                 }
             }
-            let d = m.to_dense();
-            let w = nalgebra::DMatrix::from_diagonal(&nalgebra::DVector::from_column_slice(&weights));
-            let expect = d.transpose() * w * &d;
+            let expect = dense_gram(&m, &weights);
             for mut g in [SymmetricMatrix::banded(n, 3), SymmetricMatrix::dense(n)] {
                 m.add_gram_to(Some(&weights), &mut g).unwrap();
                 assert!((g.to_dense() - &expect).amax() < 1e-12);
@@ -214,9 +216,7 @@ mod tests {
             }
         }
         let weights: Vec<f64> = (0..m.nrows()).map(|i| if i == 4 { 0.0 } else { 0.3 + i as f64 }).collect();
-        let d = m.to_dense();
-        let w = nalgebra::DMatrix::from_diagonal(&nalgebra::DVector::from_column_slice(&weights));
-        let expect = d.transpose() * w * &d;
+        let expect = dense_gram(&m, &weights);
         for mut g in [SymmetricMatrix::banded(n, 3), SymmetricMatrix::dense(n)] {
             m.add_gram_to(Some(&weights), &mut g).unwrap();
             assert!((g.to_dense() - &expect).amax() < 1e-12);
