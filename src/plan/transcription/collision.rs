@@ -197,7 +197,7 @@ impl Transcription<'_> {
     /// other `qⱼ` its difference is zero and is not computed: the whole gradient differenced along every
     /// `qⱼ` took a third of `twist_lift`'s solve. `work.q` is restored.
     pub(super) fn collision_hessian(&mut self, weights: &[f64]) {
-        let (model, nv) = (&self.spec.model, self.layout.nv);
+        let (spec, nv) = (self.spec, self.layout.nv);
         let d = 3 * nv + self.layout.n_lambda;
         let h = &mut self.hess;
         h.z[..nv].copy_from_slice(&self.work.q);
@@ -211,9 +211,9 @@ impl Transcription<'_> {
         }
         h.pair_gradients.clear();
         h.pair_gradients.resize(h.pairs.len() * nv, 0.0);
-        kinematics::placements(model, &mut self.data, &self.work.q);
+        kinematics::placements(&spec.model, &mut self.data, &self.work.q);
         for (&(p, w), out) in h.pairs.iter().zip(h.pair_gradients.chunks_exact_mut(nv)) {
-            let sep = self.collisions.separation(self.spec, &self.data, p);
+            let sep = self.collisions.separation(spec, &self.data, p);
             self.collisions.add_gradient(&self.data, p, &sep, w, out);
         }
         // and their sum g(q)
@@ -222,22 +222,20 @@ impl Transcription<'_> {
             h.grad[..nv].iter_mut().zip(base).for_each(|(g, b)| *g += b);
         }
         for j in 0..nv {
-            if !h.pairs.iter().any(|&(p, _)| self.collisions.moved_by(p, j)) {
+            if !self.hess.pairs.iter().any(|&(p, _)| self.collisions.moved_by(p, j)) {
                 continue;
             }
-            // q + εⱼ eⱼ, εⱼ = STEP·(1 + |qⱼ|)
-            let q = &mut self.work.q;
-            q.copy_from_slice(&h.z[..nv]);
-            q[j] += super::hessian::STEP * (1.0 + q[j].abs());
-            let epsilon = q[j] - h.z[j];
-            kinematics::placements(model, &mut self.data, q);
+            self.work.q.copy_from_slice(&self.hess.z[..nv]);
+            let epsilon = self.perturb(j);
+            kinematics::placements(&spec.model, &mut self.data, &self.work.q);
             // Σ over the moved pairs of g(q + εⱼ eⱼ) − g(q) (their g(q) summed apart unless all are moved)
+            let h = &mut self.hess;
             let column = &mut h.grad_perturbed[..nv];
             column.fill(0.0);
             let mut all = true;
             for &(p, w) in &h.pairs {
                 if self.collisions.moved_by(p, j) {
-                    let sep = self.collisions.separation(self.spec, &self.data, p);
+                    let sep = self.collisions.separation(spec, &self.data, p);
                     self.collisions.add_gradient(&self.data, p, &sep, w, column);
                 } else {
                     all = false;
@@ -252,14 +250,9 @@ impl Transcription<'_> {
                     }
                 }
             }
-            // S[i][j] = S[j][i] += ½ (g(q + εⱼ eⱼ) − g(q))ᵢ / εⱼ
-            for (i, c) in column.iter().enumerate() {
-                let v = 0.5 * c / epsilon;
-                h.s[i * d + j] += v;
-                h.s[j * d + i] += v;
-            }
+            super::hessian::add_difference_column(&mut h.s, d, j, column, epsilon);
         }
-        self.work.q.copy_from_slice(&h.z[..nv]);
+        self.work.q.copy_from_slice(&self.hess.z[..nv]);
     }
 
     /// The margin (m) of collision row `p`.

@@ -45,7 +45,7 @@ use crate::spatial::{Motion, Vec3};
 use crate::trajectory::bspline::BasisAt;
 
 /// Relative step of the forward differences: `ε = STEP·(1 + |zᵢ|)`, about √(machine ε).
-pub(super) const STEP: f64 = 1e-7;
+const STEP: f64 = 1e-7;
 
 /// Scratch for the second-order term, allocated once per transcription.
 #[derive(Clone, Debug)]
@@ -297,7 +297,7 @@ impl Transcription<'_> {
     }
 
     /// Moves `qⱼ` (j < nv) or `q̇ⱼ₋ₙᵥ` of the state by `ε` and returns the `ε` actually taken.
-    fn perturb(&mut self, j: usize) -> f64 {
+    pub(super) fn perturb(&mut self, j: usize) -> f64 {
         let nv = self.layout.nv;
         let value = if j < nv { &mut self.work.q[j] } else { &mut self.work.qd[j - nv] };
         let before = *value;
@@ -327,11 +327,8 @@ impl Transcription<'_> {
             self.work.q.copy_from_slice(&self.hess.z[..nv]);
             let epsilon = self.perturb(j);
             gradient(self, &mut perturbed[..nv]);
-            for i in 0..nv {
-                let v = 0.5 * (perturbed[i] - grad[i]) / epsilon;
-                self.hess.s[i * d + j] += v;
-                self.hess.s[j * d + i] += v;
-            }
+            perturbed[..nv].iter_mut().zip(&grad[..nv]).for_each(|(p, g)| *p -= g);
+            add_difference_column(&mut self.hess.s, d, j, &perturbed[..nv], epsilon);
         }
         self.work.q.copy_from_slice(&self.hess.z[..nv]);
         self.hess.grad = grad;
@@ -354,5 +351,15 @@ impl Transcription<'_> {
                 }
             }
         }
+    }
+}
+
+/// `S[i][j] = S[j][i] += ½ Δᵢ / ε` (`S` the `d × d` node block of `hess.s`): the `j`-th column of a forward
+/// difference `Δ = g(z + ε eⱼ) − g(z)` of a gradient, symmetrised.
+pub(super) fn add_difference_column(s: &mut [f64], d: usize, j: usize, difference: &[f64], epsilon: f64) {
+    for (i, delta) in difference.iter().enumerate() {
+        let v = 0.5 * delta / epsilon;
+        s[i * d + j] += v;
+        s[j * d + i] += v;
     }
 }
