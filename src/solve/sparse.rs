@@ -58,7 +58,7 @@ pub struct SparseMatrix {
     col_idx: Vec<usize>,
     values: Vec<f64>,
     /// The runs of rows with one column list, in the order of their first rows (fixed with the pattern; see
-    /// [`gram`]).
+    /// [`gram`]; none for a matrix without entries, whose Gram matrix is zero).
     runs: Vec<Run>,
 }
 
@@ -88,7 +88,7 @@ impl SparseMatrix {
 
     /// An `nrows × ncols` matrix with no entry in its pattern (a Jacobian that is not asked for).
     pub fn without_entries(nrows: usize, ncols: usize) -> Self {
-        SparseMatrix { ncols, row_ptr: vec![0; nrows + 1], col_idx: vec![], values: vec![], runs: gram::empty_rows(nrows) }
+        SparseMatrix { ncols, row_ptr: vec![0; nrows + 1], col_idx: vec![], values: vec![], runs: vec![] }
     }
 
     /// An `nrows × ncols` matrix with every entry in the pattern (for tests and tiny problems).

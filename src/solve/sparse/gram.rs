@@ -35,11 +35,6 @@ pub(super) fn runs(row_ptr: &[usize], col_idx: &[usize]) -> Vec<Run> {
     runs
 }
 
-/// The one run of `nrows` rows without entries (none when there are no rows).
-pub(super) fn empty_rows(nrows: usize) -> Vec<Run> {
-    (nrows > 0).then(|| Run { rows: (0..nrows).collect(), span: None, ascending: true }).into_iter().collect()
-}
-
 impl SparseMatrix {
     /// Half-bandwidth of `JᵀJ`: the largest `max(col) − min(col)` over the rows.
     pub fn gram_bandwidth(&self) -> usize {
@@ -66,8 +61,9 @@ impl SparseMatrix {
         const GROUP: usize = 8;
         let mut group: [(f64, &[f64]); GROUP] = [(0.0, &[]); GROUP];
         for run in &self.runs {
+            let Some((lo, hi)) = run.span else { continue };
             let mut rows = run.rows.iter().copied().filter(|&i| weight(i) != 0.0).peekable();
-            let (Some(&first), Some((lo, hi))) = (rows.peek(), run.span) else { continue };
+            let Some(&first) = rows.peek() else { continue };
             if hi - lo > bandwidth {
                 return Err(PatternError::OutsideBand { row: first, first: lo, last: hi, bandwidth });
             }
