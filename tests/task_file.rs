@@ -74,6 +74,18 @@ fn unknown_field_names_the_line() {
     assert_mentions(&t, &["test-task.toml:6", "motion.durration", "unknown field"]);
 }
 
+/// `[solver]`'s tolerances and budgets sit beside its method and starts: a misspelt one is named with its
+/// own line and the list of the section's fields, as in every other section.
+#[test]
+fn misspelt_solver_field_names_its_line_and_lists_the_fields() {
+    let t = format!("{GOOD}[solver]\nstarts = 1\nmax_iteratons = 5\n");
+    let line = t.lines().count();
+    assert_mentions(
+        &t,
+        &[&format!("test-task.toml:{line}"), "solver.max_iteratons", "`max_iterations`", "`time_limit`", "`method`"],
+    );
+}
+
 #[test]
 fn unknown_gravity_preset_lists_the_presets() {
     let t = format!("{GOOD}[environment]\ngravity = \"jupiter\"\n");

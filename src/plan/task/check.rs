@@ -126,7 +126,7 @@ fn settings(file: &TaskFile, origin: &str, at: &At) -> Result<()> {
     // The lower bound of control_points depends on the boundary conditions: checked with the spec.
     count("discretization.control_points", d.n(), 0, MAX_CONTROL_POINTS)?;
     count("discretization.nodes_per_span", d.nodes_per_span, 1, MAX_NODES_PER_SPAN)?;
-    let s = &file.solver.settings;
+    let s = &file.solver;
     at("solver.tolerance", positive(&TOLERANCE, s.tolerance))?;
     at("solver.violation_tolerance", positive(&TOLERANCE, s.violation_tolerance))?;
     count("solver.max_iterations", s.max_iterations, 1, MAX_ITERATIONS)?;

@@ -94,7 +94,7 @@ impl Task {
         let mut warnings = resolve::radian_warnings(&file, &spec.model, &origin);
         let up = up::axis(&file.environment.up, &origin)?;
         warnings.extend(up::rest_pose_warning(&spec.model, &up, &origin));
-        let s = &file.solver.settings;
+        let s = &file.solver;
         let settings = Settings {
             tol_stationarity: s.tolerance,
             tol_violation: s.violation_tolerance,

@@ -547,9 +547,18 @@ pub struct SolverSection {
     /// Seed of the perturbed starts.
     #[serde(default = "default_seed")]
     pub seed: u64,
-    /// Tolerances and budgets, written in `[solver]` itself.
-    #[serde(default, flatten)]
-    pub settings: SolverSettings,
+    /// Relative stationarity tolerance.
+    #[serde(default = "tol")]
+    pub tolerance: f64,
+    /// Scaled constraint-violation tolerance.
+    #[serde(default = "tol")]
+    pub violation_tolerance: f64,
+    /// Iteration cap (default 5000).
+    #[serde(default = "max_iterations")]
+    pub max_iterations: usize,
+    /// Seconds (default 60).
+    #[serde(default = "time_limit")]
+    pub time_limit: Option<f64>,
 }
 
 fn default_seed() -> u64 {
@@ -566,27 +575,12 @@ impl Default for SolverSection {
             method: SolverKind::InteriorPoint,
             starts: crate::plan::Starts::Auto,
             seed: default_seed(),
-            settings: SolverSettings::default(),
+            tolerance: tol(),
+            violation_tolerance: tol(),
+            max_iterations: max_iterations(),
+            time_limit: time_limit(),
         }
     }
-}
-
-/// The solver options a task may set (others keep their defaults).
-#[derive(Clone, Debug, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct SolverSettings {
-    /// Relative stationarity tolerance.
-    #[serde(default = "tol")]
-    pub tolerance: f64,
-    /// Scaled constraint-violation tolerance.
-    #[serde(default = "tol")]
-    pub violation_tolerance: f64,
-    /// Iteration cap (default 5000).
-    #[serde(default = "max_iterations")]
-    pub max_iterations: usize,
-    /// Seconds (default 60).
-    #[serde(default = "time_limit")]
-    pub time_limit: Option<f64>,
 }
 
 fn time_limit() -> Option<f64> {
@@ -598,17 +592,6 @@ fn tol() -> f64 {
 }
 fn max_iterations() -> usize {
     5000
-}
-
-impl Default for SolverSettings {
-    fn default() -> Self {
-        SolverSettings {
-            tolerance: tol(),
-            violation_tolerance: tol(),
-            max_iterations: max_iterations(),
-            time_limit: time_limit(),
-        }
-    }
 }
 
 /// `[output]`: what the plan directory holds.
