@@ -44,7 +44,7 @@ fn unknown_frame_is_named() {
 fn start_outside_limits_says_by_how_much() {
     assert_mentions(
         &GOOD.replace("shoulder = 0.0,", "shoulder = 200.0,"),
-        &["start.shoulder", "200.000°", "outside the joint's limits"],
+        &["motion.start.shoulder", "200.000°", "outside the joint's limits"],
     );
 }
 

@@ -133,19 +133,20 @@ impl Plan {
     }
 }
 
-/// Checks a spec for mistakes a user can make, naming the field; `origin` names the task in messages.
+/// Checks a spec for mistakes a user can make, naming the field as a task file writes it (`motion.goal.elbow`,
+/// `discretization.control_points`); `origin` names the task in messages.
 pub fn validate(spec: &Spec, origin: &str) -> Result<()> {
     let model = &spec.model;
     let nv = model.nv();
     let err = |field: &str, message: String| Err(Error::task(origin, field, message));
     if !(spec.duration.is_finite() && spec.duration > 0.0) {
-        return err("duration", format!("must be a positive number of seconds, got {}", spec.duration));
+        return err("motion.duration", format!("must be a positive number of seconds, got {}", spec.duration));
     }
     // The end conditions tie 1–3 control points at each end; at least one must stay free between them.
     let min_ctrl = spec.start_condition.tied() + spec.goal_condition.tied() + 1;
     if spec.n_ctrl < min_ctrl {
         return err(
-            "control_points",
+            "discretization.control_points",
             format!(
                 "{} is too few for a cubic B-spline with a \"{}\" start and a \"{}\" goal: need at least {min_ctrl}",
                 spec.n_ctrl,
@@ -156,10 +157,10 @@ pub fn validate(spec: &Spec, origin: &str) -> Result<()> {
     }
     ik::check_goals(spec, origin)?;
     if spec.nodes_per_span == 0 {
-        return err("nodes_per_span", "must be at least 1".into());
+        return err("discretization.nodes_per_span", "must be at least 1".into());
     }
     between::check_settings(&spec.between_nodes, origin)?;
-    for (name, q) in [("start", &spec.start), ("goal", &spec.goal)] {
+    for (name, q) in [("motion.start", &spec.start), ("motion.goal", &spec.goal)] {
         if q.len() != nv {
             return err(name, format!("has {} values, the model has {nv} joints", q.len()));
         }
