@@ -1,6 +1,6 @@
-//! Criterion benches of whole plans (N = 16 control points, 4 Gauss nodes per span, the default
-//! structured solver): the paper's pendulum and double pendulum, the 7-DOF sagittal arm lift and the
-//! 12-DOF two-arm reach on the tree-structured human.
+//! Criterion benches of whole plans from one start (N = 16 control points, 4 Gauss nodes per span, the task's
+//! solver: the interior point unless the file names another): the paper's pendulum and double pendulum, the
+//! 7-DOF sagittal arm lift and the 12-DOF two-arm reach on the tree-structured human.
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use mintorque::plan::{self, task::Task};

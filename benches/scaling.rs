@@ -1,6 +1,7 @@
 //! How solve time grows with the number of control points N and with the number of joints, printed as
 //! Markdown tables (`cargo bench --bench scaling`; the figures in docs/performance.md come from here).
-//! Each case is solved 3 times; the median wall time is reported.
+//! Each case is solved 3 times from one start; the median wall time is reported. The interior point is the
+//! default solver; the structured solver and the paper's AL + BFGS beside it.
 
 use mintorque::model::{Body, Joint, JointKind, JointLimits, Model, Passive};
 use mintorque::plan::{self, task::Task, SolverKind, Spec};
@@ -46,24 +47,26 @@ fn main() {
     let settings = Settings::default();
     let arm = Task::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/arm_lift_earth.toml")).unwrap();
     println!("Solve time against control points N (7-DOF arm lift, Earth, 4 nodes per span):\n");
-    println!("| N | unknowns | structured (s) | iterations | auglag-bfgs (s) | iterations |");
-    println!("|---|---|---|---|---|---|");
+    println!("| N | unknowns | interior-point (s) | iterations | structured (s) | iterations | auglag-bfgs (s) | iterations |");
+    println!("|---|---|---|---|---|---|---|---|");
+    let mark = |c: bool| if c { "" } else { " (not converged)" };
     for n in [8, 16, 32, 64] {
         let mut spec = arm.spec.clone();
         spec.n_ctrl = n;
+        let (p, ip, cp) = median_seconds(&spec, SolverKind::InteriorPoint, &settings);
         let (a, ia, ca) = median_seconds(&spec, SolverKind::Structured, &settings);
         let (b, ib, cb) = median_seconds(&spec, SolverKind::AuglagBfgs, &settings);
-        let mark = |c: bool| if c { "" } else { " (not converged)" };
-        println!("| {n} | {} | {a:.3}{} | {ia} | {b:.3}{} | {ib} |", (n - 4) * 7, mark(ca), mark(cb));
+        println!("| {n} | {} | {p:.3}{} | {ip} | {a:.3}{} | {ia} | {b:.3}{} | {ib} |", (n - 4) * 7, mark(cp), mark(ca), mark(cb));
     }
     println!("\nSolve time against joints (n-link chain raised from hanging to a bent pose in 1.5 s, N = 16):\n");
-    println!("| joints | unknowns | structured (s) | iterations |");
-    println!("|---|---|---|---|");
+    println!("| joints | unknowns | interior-point (s) | iterations | structured (s) | iterations |");
+    println!("|---|---|---|---|---|---|");
     for n in [2, 4, 8, 16, 32] {
         let model = chain(n);
         let goal: Vec<f64> = (0..n).map(|i| if i == 0 { 1.2 } else { 0.3 / n as f64 * 4.0 }).collect();
         let spec = Spec::new(model, vec![0.0; n], goal, 1.5);
+        let (p, ip, cp) = median_seconds(&spec, SolverKind::InteriorPoint, &settings);
         let (a, ia, ca) = median_seconds(&spec, SolverKind::Structured, &settings);
-        println!("| {n} | {} | {a:.3}{} | {ia} |", 12 * n, if ca { "" } else { " (not converged)" });
+        println!("| {n} | {} | {p:.3}{} | {ip} | {a:.3}{} | {ia} |", 12 * n, mark(cp), mark(ca));
     }
 }
