@@ -63,7 +63,7 @@ fn multistart_is_deterministic_and_never_worse_than_one_start() {
 #[test]
 fn the_rounds_give_the_same_plan_on_one_thread_and_on_four() {
     for example in ["double_pendulum", "push_up", "chin_up_earth"] {
-        let t = task(example);
+        let t = if example == "push_up" { push_up_with_a_hopeless_start() } else { task(example) };
         let on = |threads: usize| {
             let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
             pool.install(|| plan::plan_with_starts(&t.spec, t.solver, &t.settings, &MultiStart::default(), &mut |_| {}).unwrap())
@@ -92,13 +92,22 @@ fn the_rounds_give_the_same_plan_on_one_thread_and_on_four() {
     }
 }
 
+/// The push-up at N = 26, whose second start stalls far above the first (7.3 times its effort). At the
+/// example's N = 17 the second start stalled (4.3 times) until the damping's scale was floored (2026-12-08);
+/// now every start of every bundled example converges by itself.
+fn push_up_with_a_hopeless_start() -> Task {
+    let mut t = task("push_up");
+    t.spec.n_ctrl = 26;
+    t
+}
+
 /// A start that stalls above a converged one is not polished (`HOPELESS` = 1): the push-up's second start
-/// stalls at 4.3 times the first's effort; it is reported stalled and unpolished (its polish took
-/// 516 iterations to land 0.003 % below the first), the next round runs instead, and the plan is the
-/// common optimum of the converged starts, found in ≤ 100 iterations. With the polish it was 547.
+/// stalls far above the first's effort ([`push_up_with_a_hopeless_start`]); it is reported stalled and
+/// unpolished (at N = 17 its polish took 516 iterations to land 0.003 % below the first), the next round runs
+/// instead, and the plan is the common optimum of the converged starts, found in ≤ 100 iterations.
 #[test]
 fn a_start_stalled_far_above_a_converged_one_is_not_polished() {
-    let t = task("push_up");
+    let t = push_up_with_a_hopeless_start();
     let planned = plan::plan_with_starts(&t.spec, t.solver, &t.settings, &MultiStart::default(), &mut |_| {}).unwrap();
     let best = planned.starts.iter().filter(|s| s.converged).map(|s| s.objective).fold(f64::INFINITY, f64::min);
     let hopeless: Vec<_> = planned.starts.iter().filter(|s| !s.converged).collect();
@@ -107,7 +116,9 @@ fn a_start_stalled_far_above_a_converged_one_is_not_polished() {
         assert!(!s.polished && s.objective > mintorque::plan::HOPELESS * best, "{s:?}");
         assert!(s.polish_skipped.as_deref().is_some_and(|why| why.contains("left unpolished")), "{s:?}");
     }
-    assert!(planned.converged() && planned.outcome.objective <= best * (1.0 + mintorque::plan::TIE));
+    // The kept start is the least effort's (the plan itself a little above it where check nodes were added).
+    let kept = planned.starts[planned.best_start].objective;
+    assert!(planned.converged() && kept <= best * (1.0 + mintorque::plan::TIE), "kept {kept}, best {best}");
     assert!(planned.outcome.iterations <= 100, "{} iterations", planned.outcome.iterations);
 }
 
@@ -163,16 +174,14 @@ fn a_warm_start_at_an_optimum_is_immediate() {
 }
 
 /// The iteration budget covers every phase: a tiny budget is not exceeded by the polish. The structured
-/// solver on the weight lift, and the interior point on a 36-DOF crouch of the peer benchmark that stalls and
-/// is polished: its model's joints all within ±L rad (one start), the first L of a few that stalls the
-/// interior point — which does is a matter of the path, and the path of the last bits of the arithmetic (±2.5
-/// stalled until the Gram matrix's rows were grouped by column list, 2026-12-07; ±1.8 since). The budget lies
-/// between the first phase's steps and the whole solve's, so that it stops the polish.
+/// solver on the weight lift, and the interior point on a task whose solve stalls and is polished
+/// ([`a_solve_that_stalls`]). The budget lies between the first phase's steps and the whole solve's, so that
+/// it stops the polish.
 #[test]
 fn one_iteration_budget_for_every_phase() {
-    let (crouch, budget) = crouch_that_stalls();
+    let (stalls, budget) = a_solve_that_stalls();
     for (solver, t, budget) in
-        [(SolverKind::Structured, task("weight_lift_earth"), 40), (SolverKind::InteriorPoint, crouch, budget)]
+        [(SolverKind::Structured, task("weight_lift_earth"), 40), (SolverKind::InteriorPoint, stalls, budget)]
     {
         let settings = Settings { max_iterations: budget, ..t.settings.clone() };
         let planned = plan::plan(&t.spec, solver, &settings, &mut |_| {}).unwrap();
@@ -195,15 +204,26 @@ fn one_iteration_budget_for_every_phase() {
     }
 }
 
-/// The peer crouch with every joint within ±L rad for the first L of a few whose interior-point solve stalls
-/// and is polished, and a budget halfway between its first phase's steps and the whole solve's.
-fn crouch_that_stalls() -> (Task, usize) {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("bench/peer/tasks/h36_crouch_arms_mars.toml");
-    for range in [1.8, 2.5, 2.2, 1.5, 2.8] {
-        let mut crouch = Task::load(&path).unwrap_or_else(|e| panic!("{e}"));
-        for joint in &mut crouch.spec.model.joints {
+/// The first of a few tasks whose one-start interior-point solve stalls and is polished, and a budget halfway
+/// between its first phase's steps and the whole solve's. Which task stalls is a matter of the path, and the
+/// path of the last bits of the arithmetic: the peer crouch within ±1.8 rad stalled until the damping's scale
+/// was floored (2026-12-08), the push-up at N = 13 since; with the default starts no bundled example stalls.
+fn a_solve_that_stalls() -> (Task, usize) {
+    let crouch_path = Path::new(env!("CARGO_MANIFEST_DIR")).join("bench/peer/tasks/h36_crouch_arms_mars.toml");
+    let push_up = |n: usize| {
+        let mut t = task("push_up");
+        t.spec.n_ctrl = n;
+        (format!("push-up at N = {n}"), t)
+    };
+    let crouch = |range: f64| {
+        let mut t = Task::load(&crouch_path).unwrap_or_else(|e| panic!("{e}"));
+        for joint in &mut t.spec.model.joints {
             (joint.limits.lower, joint.limits.upper) = (-range, range);
         }
+        (format!("crouch within ±{range} rad"), t)
+    };
+    let candidates = [13, 29, 26].map(push_up).into_iter().chain([1.8, 2.5, 2.2].map(crouch));
+    for (name, t) in candidates {
         // The first phase's steps: those reported by the interior point before another model's.
         let (mut first, mut polishing) = (0, false);
         let mut observe = |p: &mintorque::solve::Progress| {
@@ -212,14 +232,14 @@ fn crouch_that_stalls() -> (Task, usize) {
                 first = p.iteration;
             }
         };
-        let planned = plan::plan(&crouch.spec, SolverKind::InteriorPoint, &crouch.settings, &mut observe).unwrap();
+        let planned = plan::plan(&t.spec, SolverKind::InteriorPoint, &t.settings, &mut observe).unwrap();
         let total = planned.outcome.iterations;
-        println!("crouch within ±{range} rad: {total} iterations, the first phase {first}, polished {}", planned.polished);
+        println!("{name}: {total} iterations, the first phase {first}, polished {}", planned.polished);
         if planned.polished && total > first + 1 {
-            return (crouch, (first + total) / 2);
+            return (t, (first + total) / 2);
         }
     }
-    panic!("none of the crouch's ranges stalls the interior point: the test needs another stalling task");
+    panic!("none of the candidates stalls the interior point: the test needs another stalling task");
 }
 
 /// The push-up (a closed loop: hands and feet held) converges at every N from 12 to 32 from one start: with

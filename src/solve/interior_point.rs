@@ -35,7 +35,7 @@
 //!   dv = μ/s − v − Σ ds        (S V e = μ e linearised)
 //! ```
 //!
-//! `δ` (the inertia correction, relative to `D`, the running maximum of `diag(JᵣᵀJᵣ)`) grows from 0 until
+//! `δ` (the inertia correction, relative to `D`, the running maximum of `diag(JᵣᵀJᵣ)` floored at a tenth of its mean) grows from 0 until
 //! the Cholesky succeeds; each step starts from a third of the last one, or from the same one after a step
 //! the line search cut below half on the exact model (which then over-predicted: `δ` is also the step's
 //! control). For the first 30 iterations of a cold start `W` is Gauss–Newton's `JᵣᵀJᵣ`, after

@@ -13,6 +13,13 @@ const DELTA_FIRST: f64 = 1e-8;
 const DELTA_GROWTH: f64 = 10.0;
 const DELTA_DECAY: f64 = 1.0 / 3.0;
 const DELTA_MAX: f64 = 1e20;
+/// The inertia correction's scale is Moré's `D` floored at this fraction of its mean, `δ·max(D_j, κ·D̄)`. `D`
+/// spans five orders of magnitude (the crouch: 0.8 … 1.8·10⁵, median 1.4·10³): a direction of negative
+/// curvature along coordinates the residuals barely see (small `D_j`) needed a `δ` that froze every other
+/// coordinate, and whole steps crawled. With κ = 0.1, the 35 tasks' starts 5929 → 4785 iterations, the kept
+/// plans 2207 → 2082 (`weight_lift_space` 136 → 104), no effort higher and the crouch's 0.7 % lower;
+/// κ = 0.03 and 0.3 did less, a uniform `δ·D̄` or `δ·max D` moved efforts up (docs/performance.md).
+const SCALING_FLOOR: f64 = 0.1;
 /// A step the line search cut below this fraction, on the exact model: the next step starts from the same
 /// `δ` instead of a third of it (the model over-predicted; a full-curvature step would be cut again). Default
 /// plans of the 35 tasks 3237 → 2961 iterations (the 36-DOF crouch 559 → 212), the push-up at N = 32 162 → 80;
@@ -147,10 +154,13 @@ impl Ipm<'_> {
         self.exact == Some(true) && self.term.is_some() && self.iterations >= self.gauss_newton_first
     }
 
-    /// Factorises the matrix plus `δ·diag`; `false` if it is not positive definite.
+    /// Factorises the matrix plus `δ·diag(max(D_j, κ·D̄))` ([`SCALING_FLOOR`]); `false` if it is not positive
+    /// definite.
     fn factorise(&mut self, delta: f64) -> bool {
+        let floor = SCALING_FLOOR * self.scaling.iter().sum::<f64>() / self.scaling.len().max(1) as f64;
         for (s, d) in self.shift.iter_mut().zip(&self.scaling) {
-            *s = delta * if *d > 0.0 { *d } else { 1.0 };
+            let d = d.max(floor);
+            *s = delta * if d > 0.0 { d } else { 1.0 };
         }
         let shift = (delta > 0.0).then_some(&self.shift[..]);
         self.factor.factor(&self.matrix, shift).is_ok()
