@@ -7,11 +7,11 @@
 //!
 //! **Status** (docs/performance.md, "The interior point as the default"): with the automatic starts it
 //! converges on all 35 tasks of the benchmark (27 examples, 8 peer tasks) and reaches F ≤ 1.001 × IPOPT's
-//! on every peer task. From one start it converges by itself on 30 of the 31 tasks that use it (4 examples
-//! choose another solver in their task files); the 36-DOF crouch stalls at its first barrier value and the
-//! structured solver finishes it from where it stopped (`plan/run.rs`). (The weight lift in space
-//! stalled too, until its collision rows were rounded where the capsules turn parallel: `geometry`.) The
-//! push-up's closed loop converges at every N from 12 to 32.
+//! on every peer task. Every start of the 31 tasks that use it (4 examples choose another solver in their
+//! task files) converges by itself since the inertia correction's scale was floored (2026-12-08); the 36-DOF
+//! crouch had stalled at its first barrier value, and a solve that stalls (the push-up at N = 13) is still
+//! finished by the structured solver from where it stopped (`plan/run.rs`). The push-up's closed loop
+//! converges at every N from 12 to 32.
 //!
 //! # The barrier subproblem
 //!
