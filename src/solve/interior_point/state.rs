@@ -20,6 +20,13 @@ const FIRST_BARRIER: f64 = 0.1;
 const BARRIER_SHRINK: f64 = 0.2;
 const BARRIER_POWER: f64 = 1.5;
 const BARRIER_ERROR: f64 = 10.0;
+/// Where a warm start's rows without a multiplier restart, at least, when nearer their bound than a cold
+/// start's floor (10⁻²), or past it: a check node's new rows, violated. From the cold floor their slacks
+/// collapsed over the re-solve's first steps, cut by the fraction-to-boundary rule to 0.3–10 % while the rows
+/// stayed violated (`dip_down_space`'s 26-step re-solve). At 10⁻⁴ the 35 tasks' kept plans 2082 → 2012
+/// iterations, none more (`h36_wave_step_earth` 120 → 109, `dip_down_space` 115 → 109), no effort moved;
+/// at 10⁻⁵ 2022, at 10⁻⁶ the wave-step 125 (docs/performance.md).
+const WARM_SLACK_FLOOR: f64 = 1e-4;
 /// `v` is kept within `[μ/(κ s), κ μ/s]` (IPOPT's `κ_Σ`), so the primal-dual Hessian stays near the primal one.
 const MULTIPLIER_SAFEGUARD: f64 = 1e10;
 
@@ -188,9 +195,16 @@ impl<'a> Ipm<'a> {
                 *y = m * s;
             }
             // A row the old solve left without a multiplier (inactive there, or a check node's new row)
-            // starts as in a cold start (`s = max(−ĝ, κ)`, `v = μ/s`). Given `v = μ/10⁻⁸` (10⁶ times that) on
-            // a new violated row, the chin-up's re-solves began with a matrix that needed `δ = 1` and took 17–20
-            // steps for that damping to decay (75 + 37 iterations; now 75 + 19).
+            // starts as in a cold start, `v = μ/s`, but with `s = max(−ĝ, WARM_SLACK_FLOOR)`. Given
+            // `v = μ/10⁻⁸` on a new violated row, the chin-up's re-solves began with a matrix that needed `δ = 1`
+            // and took 17–20 steps for that damping to decay (75 + 37 iterations; 75 + 19 with the cold floor).
+            for (i, _) in w.lambda.iter().enumerate().filter(|(_, l)| **l == 0.0) {
+                let distance = -relaxed(self.eval.g[i], self.scales.ineq[i], self.relax);
+                if distance < self.s[i] {
+                    self.s[i] = distance.max(WARM_SLACK_FLOOR);
+                    self.v[i] = self.mu / self.s[i];
+                }
+            }
             for (i, l) in w.lambda.iter().enumerate().filter(|(_, l)| **l > 0.0) {
                 let slack = (-relaxed(self.eval.g[i], self.scales.ineq[i], self.relax)).max(1e-8);
                 self.v[i] = (l * self.scales.ineq[i]).max(self.mu / slack);
