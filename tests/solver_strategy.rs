@@ -92,13 +92,18 @@ fn the_rounds_give_the_same_plan_on_one_thread_and_on_four() {
     }
 }
 
+/// The push-up example with `n` control points.
+fn push_up_at(n: usize) -> Task {
+    let mut t = task("push_up");
+    t.spec.n_ctrl = n;
+    t
+}
+
 /// The push-up at N = 26, whose second start stalls far above the first (7.3 times its effort). At the
 /// example's N = 17 the second start stalled (4.3 times) until the damping's scale was floored (2026-12-08);
 /// now every start of every bundled example converges by itself.
 fn push_up_with_a_hopeless_start() -> Task {
-    let mut t = task("push_up");
-    t.spec.n_ctrl = 26;
-    t
+    push_up_at(26)
 }
 
 /// A start that stalls above a converged one is not polished (`HOPELESS` = 1): the push-up's second start
@@ -210,11 +215,7 @@ fn one_iteration_budget_for_every_phase() {
 /// was floored (2026-12-08), the push-up at N = 13 since; with the default starts no bundled example stalls.
 fn a_solve_that_stalls() -> (Task, usize) {
     let crouch_path = Path::new(env!("CARGO_MANIFEST_DIR")).join("bench/peer/tasks/h36_crouch_arms_mars.toml");
-    let push_up = |n: usize| {
-        let mut t = task("push_up");
-        t.spec.n_ctrl = n;
-        (format!("push-up at N = {n}"), t)
-    };
+    let push_up = |n: usize| (format!("push-up at N = {n}"), push_up_at(n));
     let crouch = |range: f64| {
         let mut t = Task::load(&crouch_path).unwrap_or_else(|e| panic!("{e}"));
         for joint in &mut t.spec.model.joints {

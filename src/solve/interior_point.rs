@@ -38,10 +38,10 @@
 //! `δ` (the inertia correction, relative to `D`, the running maximum of `diag(JᵣᵀJᵣ)` floored at a tenth of
 //! its mean) grows from 0 until the Cholesky succeeds; each step starts from a third of the last one (from 0
 //! after a step at the smallest), or from the same one after a step the line search cut below half on the
-//! exact model (which then over-predicted: `δ` is also the step's control). For the first 30 iterations of a cold start `W` is Gauss–Newton's `JᵣᵀJᵣ`, after
-//! that (and at once from a warm start) the exact term joins it, recomputed every 3 iterations: far from a
-//! solution the exact Hessian's long steps along its weak directions are cut to nothing by the line search;
-//! near one its curvature gives the fast finish. A problem that provides no term gets a secant
+//! exact model (which then over-predicted: `δ` is also the step's control). For the first 30 iterations of a
+//! cold start `W` is Gauss–Newton's `JᵣᵀJᵣ`, after that (and at once from a warm start) the exact term joins
+//! it, recomputed every 3 iterations: far from a solution the exact Hessian's long steps along its weak
+//! directions are cut to nothing by the line search; near one its curvature gives the fast finish. A problem that provides no term gets a secant
 //! approximation of the constraints' part ([`secant`]). Once the equalities nearly hold, iterative
 //! refinement takes each direction towards a hundredth of a percent of `δ_c`, so that their multipliers do
 //! not crawl (`step.rs`).

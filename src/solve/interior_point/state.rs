@@ -198,16 +198,14 @@ impl<'a> Ipm<'a> {
             // starts as in a cold start, `v = μ/s`, but with `s = max(−ĝ, WARM_SLACK_FLOOR)`. Given
             // `v = μ/10⁻⁸` on a new violated row, the chin-up's re-solves began with a matrix that needed `δ = 1`
             // and took 17–20 steps for that damping to decay (75 + 37 iterations; 75 + 19 with the cold floor).
-            for (i, _) in w.lambda.iter().enumerate().filter(|(_, l)| **l == 0.0) {
+            for (i, &l) in w.lambda.iter().enumerate() {
                 let distance = -relaxed(self.eval.g[i], self.scales.ineq[i], self.relax);
-                if distance < self.s[i] {
+                if l > 0.0 {
+                    self.v[i] = (l * self.scales.ineq[i]).max(self.mu / distance.max(1e-8));
+                } else if l == 0.0 && distance < self.s[i] {
                     self.s[i] = distance.max(WARM_SLACK_FLOOR);
                     self.v[i] = self.mu / self.s[i];
                 }
-            }
-            for (i, l) in w.lambda.iter().enumerate().filter(|(_, l)| **l > 0.0) {
-                let slack = (-relaxed(self.eval.g[i], self.scales.ineq[i], self.relax)).max(1e-8);
-                self.v[i] = (l * self.scales.ineq[i]).max(self.mu / slack);
             }
         }
         if settings.warm_start.is_some() {
